@@ -1,0 +1,86 @@
+# canalpath - one non-recursive Makefile. `make help` lists the targets.
+# SPDX-License-Identifier: MIT
+#
+# Build trees (out of tree, under $(BUILD)):
+#   host/   native float build: unit tests, native firmware (pty), host_sim
+#   hostd/  native double build (CP_REAL_DOUBLE=1): unit tests
+#   m4f/    Cortex-M4F (QEMU mps2-an386): firmware image fw.elf, unit tests unit.elf
+# Fragments: mk/m4f.mk (cross build, QEMU, size/stack/bench), mk/sim.mk (posix
+# port, host_sim, pty sessions).
+
+BUILD   ?= build
+CC      ?= cc
+CLANG   ?= clang
+CROSS   ?= arm-none-eabi-
+PYTHON  ?= /usr/bin/python3
+V       ?= 0
+Q       := $(if $(filter 1,$(V)),,@)
+
+# Warnings that every compiler (gcc, clang, arm-none-eabi-gcc) must pass clean.
+WARN := -std=c99 -pedantic -Werror -Wall -Wextra -Wvla -Wdouble-promotion -Wshadow \
+        -Wstrict-prototypes -Wmissing-prototypes -Wundef -Wcast-align
+# Determinism: no FMA contraction (native and M4F streams are byte-identical),
+# no errno from sqrt (inlined as one instruction).
+FPFLAGS := -ffp-contract=off -fno-math-errno
+INC := -Ifirmware -Ihal -Itests
+
+FW_SRC   := $(wildcard firmware/*.c)
+TEST_SRC := $(filter-out tests/fuzz_%.c tests/fw_fake.c,$(wildcard tests/*.c))
+
+HOST_CFLAGS := $(WARN) $(FPFLAGS) -O2 -g $(INC)
+# Firmware objects also prove the stack bound per function.
+STACK_FN_MAX ?= 512
+
+.PHONY: all help check demo bench size stack clean unit unit-double guards
+all: unit unit-double
+
+## help: list the targets
+help:
+	@awk '/^## /{sub(/^## /,""); print}' $(MAKEFILE_LIST)
+
+##
+## unit: host unit tests, float build (runner word "unit")
+unit: $(BUILD)/host/unit
+	$(Q)$(BUILD)/host/unit
+
+## unit-double: host unit tests, double build (runner word "unit-double")
+unit-double: $(BUILD)/hostd/unit
+	$(Q)$(BUILD)/hostd/unit
+
+$(BUILD)/host/fw/%.o: firmware/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(HOST_CFLAGS) -fstack-usage -Wstack-usage=$(STACK_FN_MAX) -MMD -MP -c $< -o $@
+
+$(BUILD)/host/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(HOST_CFLAGS) -Wno-double-promotion -MMD -MP -c $< -o $@
+
+$(BUILD)/hostd/fw/%.o: firmware/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(HOST_CFLAGS) -DCP_REAL_DOUBLE=1 -MMD -MP -c $< -o $@
+
+$(BUILD)/hostd/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(HOST_CFLAGS) -Wno-double-promotion -DCP_REAL_DOUBLE=1 -DTEST_WORD='"unit-double"' -MMD -MP -c $< -o $@
+
+HOST_FW_OBJ  := $(patsubst firmware/%.c,$(BUILD)/host/fw/%.o,$(FW_SRC))
+HOSTD_FW_OBJ := $(patsubst firmware/%.c,$(BUILD)/hostd/fw/%.o,$(FW_SRC))
+
+$(BUILD)/host/unit: $(HOST_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/host/tests/%.o,$(TEST_SRC))
+	$(Q)$(CC) -o $@ $^ -lm
+
+$(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%.o,$(TEST_SRC))
+	$(Q)$(CC) -o $@ $^ -lm
+
+-include mk/m4f.mk
+-include mk/sim.mk
+
+## check: every test and guard; ends with one "N passed, N failed" line
+check:
+	$(Q)sh tools/check.sh
+
+## clean: remove the build tree
+clean:
+	rm -rf $(BUILD)
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

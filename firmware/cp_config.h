@@ -1,0 +1,76 @@
+/* cp_config.h - every compile-time size and knob of canalpath, with unit and range.
+ * SPDX-License-Identifier: MIT
+ *
+ * Override any knob with -DNAME=value. The #error block at the end rejects
+ * combinations that would break a promise (grbl config.h style).
+ */
+#ifndef CP_CONFIG_H
+#define CP_CONFIG_H
+
+/* 0: cp_real is float (default, the M4F image). 1: double (host builds only). */
+#ifndef CP_REAL_DOUBLE
+#define CP_REAL_DOUBLE 0
+#endif
+
+/* Protocol version reported by $I. Integer, bumped on any wire-visible change. */
+#define CP_PROTO_VERSION 1
+#define CP_FW_VERSION "0.1.0"
+
+/* Longest command line accepted, bytes including the terminator. Integer (16-250).
+ * A longer line is discarded up to its newline and answered with error:line-too-long. */
+#ifndef CP_LINE_MAX
+#define CP_LINE_MAX 96
+#endif
+
+/* Transmit staging buffer in the protocol engine, bytes. Integer (64-1024).
+ * One reply line must fit; larger values only reduce HAL write calls. */
+#ifndef CP_TX_BUF
+#define CP_TX_BUF 256
+#endif
+
+/* Maximum output steps per curvature line (points per line = steps + 1). Integer (2-65535). */
+#ifndef CP_MAX_STEPS
+#define CP_MAX_STEPS 4096
+#endif
+
+/* Maximum Simpson sub-steps per output step (quadrature of Lambda). Integer (1-64). */
+#ifndef CP_MAX_SUBSTEPS
+#define CP_MAX_SUBSTEPS 32
+#endif
+
+/* Maximum number of curvature lines (family 2) or circles (family 1) in one job. Integer (1-4096). */
+#ifndef CP_MAX_LINES
+#define CP_MAX_LINES 256
+#endif
+
+/* Points of one link move along a characteristic circle between two family-2 lines,
+ * excluding both ends. Integer (0-64). */
+#ifndef CP_MAX_LINK
+#define CP_MAX_LINK 64
+#endif
+
+/* Byte budget of the complete canal toolpath context (struct toolpath), float build. */
+#ifndef CP_TOOLPATH_BUDGET
+#define CP_TOOLPATH_BUDGET 256
+#endif
+
+#if CP_LINE_MAX < 16 || CP_LINE_MAX > 250
+#error "CP_LINE_MAX must be in 16..250"
+#endif
+#if CP_TX_BUF < 64 || CP_TX_BUF > 1024
+#error "CP_TX_BUF must be in 64..1024"
+#endif
+#if CP_MAX_STEPS < 2 || CP_MAX_STEPS > 65535
+#error "CP_MAX_STEPS must be in 2..65535"
+#endif
+#if CP_MAX_SUBSTEPS < 1 || CP_MAX_SUBSTEPS > 64
+#error "CP_MAX_SUBSTEPS must be in 1..64"
+#endif
+#if CP_MAX_LINES < 1 || CP_MAX_LINES > 4096
+#error "CP_MAX_LINES must be in 1..4096"
+#endif
+#if CP_MAX_LINK < 0 || CP_MAX_LINK > 64
+#error "CP_MAX_LINK must be in 0..64"
+#endif
+
+#endif /* CP_CONFIG_H */
