@@ -72,8 +72,10 @@ enum cp_err {
 
 #if defined(__GNUC__)
 #define CP_MUST_CHECK __attribute__((warn_unused_result))
+#define CP_NOINLINE __attribute__((noinline))
 #else
 #define CP_MUST_CHECK
+#define CP_NOINLINE
 #endif
 
 /* Finite test that survives -ffast-math-free builds and needs no libm call. */

@@ -1,0 +1,446 @@
+/* canal.c - canal surface touching z = 0 along a plane curve: jets, frame, points.
+ * SPDX-License-Identifier: MIT
+ *
+ * Mathematics: MATH-canal §2.2 (contact frame), §5.2 (one quadrature, stereographic
+ * point, homogeneous labels, regularity D), §9 (streaming algorithm).
+ */
+#include "canal.h"
+#include "cp_math.h"
+
+/* Number of used parameters per kind. */
+static const uint8_t curve_nparams[4] = {4u, 5u, 6u, 8u};
+static const uint8_t radius_nparams[4] = {1u, 2u, 3u, 4u};
+
+/* Samples of |C'|^2 used to bracket the minimum speed of a Bezier, and the
+ * golden-section refinements inside the bracket (fixed counts). */
+#define BEZIER_SPEED_SAMPLES 64
+#define BEZIER_SPEED_REFINE 40
+
+/* Does [lo, hi] contain off + 2 pi m for some integer m? */
+static int contains_phase(cp_real lo, cp_real hi, cp_real off)
+{
+    cp_real m = cp_ceil((lo - off) / CP_TWO_PI);
+    return off + CP_TWO_PI * m <= hi;
+}
+
+static cp_real bern3(const cp_real *r, cp_real s)
+{
+    cp_real u = CP_R(1.0) - s;
+    return r[0] * u * u * u + CP_R(3.0) * r[1] * s * u * u + CP_R(3.0) * r[2] * s * s * u +
+           r[3] * s * s * s;
+}
+
+/* Exact range of R over the normalized parameter s in [0, 1]. */
+static void radius_range(const struct canal *c, cp_real *rmin, cp_real *rmax)
+{
+    const cp_real *rp = c->rp;
+    cp_real lo, hi, v;
+    switch (c->radius) {
+    case CANAL_R_CONST:
+        lo = hi = rp[0];
+        break;
+    case CANAL_R_LINEAR:
+        lo = rp[0] < rp[1] ? rp[0] : rp[1];
+        hi = rp[0] < rp[1] ? rp[1] : rp[0];
+        break;
+    case CANAL_R_COS: {
+        /* phase phi = k theta over the travelled theta interval */
+        cp_real th0, th1, ph0, ph1, s0, c0, s1, c1, b = rp[0], cc = rp[1];
+        if (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) {
+            th0 = (cp_real)c->dir * c->t0;
+            th1 = (cp_real)c->dir * c->t1;
+        } else {
+            th0 = CP_R(0.0);
+            th1 = CP_TWO_PI;
+        }
+        ph0 = rp[2] * th0;
+        ph1 = rp[2] * th1;
+        if (ph1 < ph0) {
+            v = ph0;
+            ph0 = ph1;
+            ph1 = v;
+        }
+        cp_sincos(ph0, &s0, &c0);
+        cp_sincos(ph1, &s1, &c1);
+        lo = b * c0 + cc;
+        hi = lo;
+        v = b * c1 + cc;
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+        /* interior extrema of b cos(phi) + c: cos = +-1 */
+        if (contains_phase(ph0, ph1, CP_R(0.0))) {
+            v = b + cc;
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        if (contains_phase(ph0, ph1, CP_PI)) {
+            v = cc - b;
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        break;
+    }
+    default: { /* CANAL_R_CUBIC: endpoints and the roots of R'(s) in (0, 1) */
+        cp_real d0 = rp[1] - rp[0], d1 = rp[2] - rp[1], d2 = rp[3] - rp[2];
+        cp_real qa = d0 - CP_R(2.0) * d1 + d2, qb = CP_R(2.0) * (d1 - d0), qc = d0;
+        cp_real roots[2];
+        int nr = 0, i;
+        lo = rp[0] < rp[3] ? rp[0] : rp[3];
+        hi = rp[0] < rp[3] ? rp[3] : rp[0];
+        if (cp_fabs(qa) <= CP_R(1e-12) * (cp_fabs(qb) + cp_fabs(qc)) || qa == CP_R(0.0)) {
+            if (qb != CP_R(0.0)) {
+                roots[nr++] = -qc / qb;
+            }
+        } else {
+            cp_real disc = qb * qb - CP_R(4.0) * qa * qc;
+            if (disc >= CP_R(0.0)) {
+                cp_real sq = cp_sqrt(disc);
+                cp_real qq = qb >= CP_R(0.0) ? -CP_R(0.5) * (qb + sq) : -CP_R(0.5) * (qb - sq);
+                roots[nr++] = qq / qa;
+                if (qq != CP_R(0.0)) {
+                    roots[nr++] = qc / qq;
+                }
+            }
+        }
+        for (i = 0; i < nr; i++) {
+            if (roots[i] > CP_R(0.0) && roots[i] < CP_R(1.0)) {
+                v = bern3(rp, roots[i]);
+                lo = v < lo ? v : lo;
+                hi = v > hi ? v : hi;
+            }
+        }
+        break;
+    }
+    }
+    *rmin = lo;
+    *rmax = hi;
+}
+
+static cp_real bezier_speed2(const cp_real *p, cp_real s)
+{
+    cp_real u = CP_R(1.0) - s;
+    cp_real dx = CP_R(3.0) * ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * s * u +
+                              (p[6] - p[4]) * s * s);
+    cp_real dy = CP_R(3.0) * ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * s * u +
+                              (p[7] - p[5]) * s * s);
+    return dx * dx + dy * dy;
+}
+
+/* Minimum |C'| of a Bezier over [0, 1]: sample, then golden-section refinement
+ * in the bracket around the smallest sample (|C'|^2 is a quartic: at most two
+ * local minima, each wider than the sample spacing unless it is a near-cusp,
+ * which the refinement resolves). Fixed counts. */
+static cp_real bezier_min_speed(const cp_real *p)
+{
+    cp_real best = bezier_speed2(p, CP_R(0.0));
+    cp_real a, b, x1, x2, f1, f2;
+    const cp_real gr = CP_R(0.6180339887498949);
+    int i, ibest = 0;
+    for (i = 1; i <= BEZIER_SPEED_SAMPLES; i++) {
+        cp_real v = bezier_speed2(p, (cp_real)i / (cp_real)BEZIER_SPEED_SAMPLES);
+        if (v < best) {
+            best = v;
+            ibest = i;
+        }
+    }
+    a = (cp_real)(ibest > 0 ? ibest - 1 : 0) / (cp_real)BEZIER_SPEED_SAMPLES;
+    b = (cp_real)(ibest < BEZIER_SPEED_SAMPLES ? ibest + 1 : BEZIER_SPEED_SAMPLES) /
+        (cp_real)BEZIER_SPEED_SAMPLES;
+    x1 = b - gr * (b - a);
+    x2 = a + gr * (b - a);
+    f1 = bezier_speed2(p, x1);
+    f2 = bezier_speed2(p, x2);
+    for (i = 0; i < BEZIER_SPEED_REFINE; i++) {
+        if (f1 < f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - gr * (b - a);
+            f1 = bezier_speed2(p, x1);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + gr * (b - a);
+            f2 = bezier_speed2(p, x2);
+        }
+    }
+    best = f1 < best ? f1 : best;
+    best = f2 < best ? f2 : best;
+    return cp_sqrt(best);
+}
+
+int canal_init(struct canal *c, const struct canal_cfg *cfg)
+{
+    unsigned i, nc, nr;
+    cp_real size = CP_R(0.0), lim;
+    if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
+        return CP_ERR_INVAL;
+    }
+    nc = curve_nparams[cfg->curve];
+    nr = radius_nparams[cfg->radius];
+    for (i = 0; i < 8u; i++) {
+        c->cp[i] = i < nc ? cfg->cp[i] : CP_R(0.0);
+    }
+    for (i = 0; i < 4u; i++) {
+        c->rp[i] = i < nr ? cfg->rp[i] : CP_R(0.0);
+    }
+    for (i = 0; i < nc; i++) {
+        if (!cp_isfinite(c->cp[i])) {
+            return CP_ERR_NONFINITE;
+        }
+    }
+    for (i = 0; i < nr; i++) {
+        if (!cp_isfinite(c->rp[i])) {
+            return CP_ERR_NONFINITE;
+        }
+    }
+    c->curve = cfg->curve;
+    c->radius = cfg->radius;
+    c->dir = 1;
+    /* ranges: coordinates and radii */
+    for (i = 0; i < nc; i++) {
+        int is_angle = (c->curve == CANAL_ARC && i >= 3u) || (c->curve == CANAL_ELLIPSE && i >= 4u);
+        lim = is_angle ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX;
+        if (cp_fabs(c->cp[i]) > lim) {
+            return CP_ERR_RANGE;
+        }
+    }
+    for (i = 0; i < nr; i++) {
+        lim = (c->radius == CANAL_R_COS && i == 2u) ? CANAL_K_MAX : CANAL_COORD_MAX;
+        if (cp_fabs(c->rp[i]) > lim) {
+            return CP_ERR_RANGE;
+        }
+    }
+    switch (c->curve) {
+    case CANAL_LINE: {
+        cp_real dx = c->cp[2] - c->cp[0], dy = c->cp[3] - c->cp[1];
+        c->t0 = CP_R(0.0);
+        c->t1 = CP_R(1.0);
+        c->cmin = cp_sqrt(dx * dx + dy * dy);
+        size = c->cmin;
+        break;
+    }
+    case CANAL_ARC:
+    case CANAL_ELLIPSE: {
+        unsigned ia = c->curve == CANAL_ARC ? 3u : 4u;
+        cp_real a0 = c->cp[ia], a1 = c->cp[ia + 1u];
+        if (c->curve == CANAL_ARC) {
+            if (c->cp[2] < CP_R(0.0)) {
+                return CP_ERR_RANGE;
+            }
+            c->cmin = c->cp[2];
+            size = c->cp[2];
+        } else {
+            if (c->cp[2] < CP_R(0.0) || c->cp[3] < CP_R(0.0)) {
+                return CP_ERR_RANGE;
+            }
+            c->cmin = c->cp[2] < c->cp[3] ? c->cp[2] : c->cp[3];
+            size = c->cp[2] > c->cp[3] ? c->cp[2] : c->cp[3];
+        }
+        if (a0 == a1) {
+            return CP_ERR_EMPTY;
+        }
+        if (cp_fabs(a1 - a0) > CANAL_SPAN_MAX * (CP_R(1.0) + CP_R(4.0) * CP_REAL_EPS)) {
+            return CP_ERR_RANGE;
+        }
+        c->dir = a1 > a0 ? 1 : -1;
+        c->t0 = (cp_real)c->dir * a0;
+        c->t1 = (cp_real)c->dir * a1;
+        break;
+    }
+    default: { /* CANAL_BEZIER */
+        cp_real xmin = c->cp[0], xmax = c->cp[0], ymin = c->cp[1], ymax = c->cp[1];
+        for (i = 1; i < 4u; i++) {
+            cp_real x = c->cp[2u * i], y = c->cp[2u * i + 1u];
+            xmin = x < xmin ? x : xmin;
+            xmax = x > xmax ? x : xmax;
+            ymin = y < ymin ? y : ymin;
+            ymax = y > ymax ? y : ymax;
+        }
+        size = (xmax - xmin) > (ymax - ymin) ? (xmax - xmin) : (ymax - ymin);
+        c->t0 = CP_R(0.0);
+        c->t1 = CP_R(1.0);
+        c->cmin = bezier_min_speed(c->cp);
+        break;
+    }
+    }
+    if (!(c->t1 > c->t0)) {
+        return CP_ERR_EMPTY;
+    }
+    if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
+        return CP_ERR_DEGENERATE;
+    }
+    c->inv_span = CP_R(1.0) / (c->t1 - c->t0);
+    c->dth = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? (cp_real)c->dir : CP_TWO_PI;
+    radius_range(c, &c->rmin, &c->rmax);
+    if (!(c->rmin > CP_R(0.0))) {
+        return CP_ERR_RADIUS;
+    }
+    return CP_OK;
+}
+
+void canal_jet(const struct canal *c, cp_real t, struct canal_jet *j)
+{
+    const cp_real *p = c->cp;
+    const cp_real *rp = c->rp;
+    cp_real s, u, sn, cs, th, d = (cp_real)c->dir;
+    switch (c->curve) {
+    case CANAL_LINE:
+        j->dx = p[2] - p[0];
+        j->dy = p[3] - p[1];
+        j->x = p[0] + t * j->dx;
+        j->y = p[1] + t * j->dy;
+        j->ddx = CP_R(0.0);
+        j->ddy = CP_R(0.0);
+        break;
+    case CANAL_ARC:
+        cp_sincos(d * t, &sn, &cs);
+        j->x = p[0] + p[2] * cs;
+        j->y = p[1] + p[2] * sn;
+        j->dx = -d * p[2] * sn;
+        j->dy = d * p[2] * cs;
+        j->ddx = -p[2] * cs;
+        j->ddy = -p[2] * sn;
+        break;
+    case CANAL_ELLIPSE:
+        cp_sincos(d * t, &sn, &cs);
+        j->x = p[0] + p[2] * cs;
+        j->y = p[1] + p[3] * sn;
+        j->dx = -d * p[2] * sn;
+        j->dy = d * p[3] * cs;
+        j->ddx = -p[2] * cs;
+        j->ddy = -p[3] * sn;
+        break;
+    default: { /* CANAL_BEZIER, s = t */
+        cp_real b0, b1, b2, b3;
+        u = CP_R(1.0) - t;
+        b0 = u * u * u;
+        b1 = CP_R(3.0) * t * u * u;
+        b2 = CP_R(3.0) * t * t * u;
+        b3 = t * t * t;
+        j->x = b0 * p[0] + b1 * p[2] + b2 * p[4] + b3 * p[6];
+        j->y = b0 * p[1] + b1 * p[3] + b2 * p[5] + b3 * p[7];
+        j->dx = CP_R(3.0) * ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * t * u +
+                             (p[6] - p[4]) * t * t);
+        j->dy = CP_R(3.0) * ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * t * u +
+                             (p[7] - p[5]) * t * t);
+        j->ddx = CP_R(6.0) * ((p[4] - CP_R(2.0) * p[2] + p[0]) * u + (p[6] - CP_R(2.0) * p[4] + p[2]) * t);
+        j->ddy = CP_R(6.0) * ((p[5] - CP_R(2.0) * p[3] + p[1]) * u + (p[7] - CP_R(2.0) * p[5] + p[3]) * t);
+        break;
+    }
+    }
+    s = (t - c->t0) * c->inv_span;
+    switch (c->radius) {
+    case CANAL_R_CONST:
+        j->r = rp[0];
+        j->dr = CP_R(0.0);
+        j->ddr = CP_R(0.0);
+        break;
+    case CANAL_R_LINEAR:
+        j->r = rp[0] + (rp[1] - rp[0]) * s;
+        j->dr = (rp[1] - rp[0]) * c->inv_span;
+        j->ddr = CP_R(0.0);
+        break;
+    case CANAL_R_COS:
+        th = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? d * t : CP_TWO_PI * t;
+        cp_sincos(rp[2] * th, &sn, &cs);
+        j->r = rp[0] * cs + rp[1];
+        j->dr = -rp[0] * rp[2] * sn * c->dth;
+        j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
+        break;
+    default: /* CANAL_R_CUBIC */
+        u = CP_R(1.0) - s;
+        j->r = bern3(rp, s);
+        j->dr = CP_R(3.0) *
+                ((rp[1] - rp[0]) * u * u + CP_R(2.0) * (rp[2] - rp[1]) * s * u + (rp[3] - rp[2]) * s * s) *
+                c->inv_span;
+        j->ddr = CP_R(6.0) *
+                 ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u + (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
+                 c->inv_span * c->inv_span;
+        break;
+    }
+}
+
+void canal_frame(const struct canal_jet *j, struct canal_frame *f)
+{
+    cp_real c2 = j->dx * j->dx + j->dy * j->dy;
+    cp_real ic = CP_R(1.0) / cp_sqrt(c2);
+    cp_real ic2 = ic * ic;
+    cp_real q = j->dx * j->ddy - j->dy * j->ddx;
+    cp_real pp = j->ddr * c2 - j->dr * (j->dx * j->ddx + j->dy * j->ddy);
+    f->x = j->x;
+    f->y = j->y;
+    f->tx = j->dx * ic;
+    f->ty = j->dy * ic;
+    f->r = j->r;
+    f->p = j->dr * ic;
+    f->q2 = CP_R(1.0) + f->p * f->p;
+    f->kappa = q * ic2 * ic;
+    f->dpds = pp * ic2 * ic2;
+    f->g = j->dr * f->kappa;
+}
+
+cp_real canal_g(const struct canal_jet *j)
+{
+    cp_real q = j->dx * j->ddy - j->dy * j->ddx;
+    cp_real c2 = j->dx * j->dx + j->dy * j->dy;
+    return j->dr * q / (c2 * cp_sqrt(c2));
+}
+
+void canal_point(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off,
+                 struct canal_point *out)
+{
+    cp_real rr = f->r - rad_off;
+    cp_real pb = f->p * b;
+    cp_real w = CP_R(2.0) * b / (f->q2 * b * b + h * h);
+    cp_real nx = w * (-pb * f->tx - h * f->ty);
+    cp_real ny = w * (-pb * f->ty + h * f->tx);
+    cp_real wb = w * b;
+    out->n.x = nx;
+    out->n.y = ny;
+    out->n.z = wb - CP_R(1.0);
+    out->m.x = f->x + rr * nx;
+    out->m.y = f->y + rr * ny;
+    out->m.z = rad_off + rr * wb;
+}
+
+cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off)
+{
+    return f->q2 * b * b + h * h - CP_R(2.0) * (f->r - rad_off) * (f->kappa * h * b + f->dpds * b * b);
+}
+
+void canal_label(const struct canal_frame *f0, cp_real u0, cp_real *alpha, cp_real *b)
+{
+    cp_real sn, cs;
+    cp_sincos(CP_R(0.5) * u0, &sn, &cs);
+    *alpha = cp_sqrt(f0->q2) * cs;
+    *b = sn;
+}
+
+cp_real canal_angle(const struct canal_frame *f, cp_real h, cp_real b)
+{
+    cp_real u = CP_R(2.0) * cp_atan2(cp_sqrt(f->q2) * b, h);
+    if (u > CP_PI) {
+        u -= CP_TWO_PI;
+    } else if (u <= -CP_PI) {
+        u += CP_TWO_PI;
+    }
+    return u;
+}
+
+void canal_circle(const struct canal_jet *j, struct cp_vec3 *centre, cp_real *radius,
+                  struct cp_vec3 *axis)
+{
+    cp_real c2 = j->dx * j->dx + j->dy * j->dy;
+    cp_real sig = cp_sqrt(c2 + j->dr * j->dr);
+    cp_real is = CP_R(1.0) / sig;
+    cp_real a = -j->r * j->dr * is;
+    axis->x = j->dx * is;
+    axis->y = j->dy * is;
+    axis->z = j->dr * is;
+    centre->x = j->x + a * axis->x;
+    centre->y = j->y + a * axis->y;
+    centre->z = j->r + a * axis->z;
+    *radius = j->r * cp_sqrt(c2) * is;
+}

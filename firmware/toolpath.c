@@ -1,0 +1,751 @@
+/* toolpath.c - pull iterator over a canal-surface patch (both curvature-line families).
+ * SPDX-License-Identifier: MIT
+ *
+ * Parameter grid. With N output steps and M Simpson panels per step, the
+ * quadrature lives on half-nodes a = 0 .. 2 M N at t(a) = t0 + a hp, hp = h / (2M):
+ * a panel spans [a, a + 2] and output node i is half-node 2 M i. Every t is
+ * computed from its integer index (never accumulated), so a point depends only
+ * on (i, label) and on the deterministic Lambda march.
+ *
+ * Error analysis of Lambda (MATH-canal §10). Composite Simpson on g = R' kappa_C:
+ * |dLambda| <= (t1 - t0) (2 hp)^4 max|g''''| / 2880, and a label error moves a point
+ * by at most 2 R_max |dLambda| (the stereographic map has Lipschitz constant <= 2R
+ * in lambda). The panel count is fixed before streaming from a Richardson estimate
+ * (64 vs 128 panels compared at every common node, error ratio 16 per halving), so
+ * that 2 R_max |dLambda| <= TOOLPATH_LAMBDA_TOL. Summation uses Kahan compensation:
+ * without it float32 drift reaches ~3e-5 mm after 4096 steps; with it the sum is
+ * within 1-2 ulp of the exact sum of the panel terms. Backward lines re-use the
+ * identical panel terms in reverse order, and Lambda is snapped to its exact value 0
+ * at t0, so every line starts from the same state on every run (resume is exact).
+ */
+#include "toolpath.h"
+#include "cp_math.h"
+
+#define RICH_COARSE 64u /* Richardson estimate: coarse panel count over [t0, t1] */
+#define WALK_MAX_ROUNDS 4 /* step-count refinements from the measured sagitta */
+#define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
+#define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
+
+struct quad {
+    cp_real lam, comp, g; /* Lambda, Kahan compensation, integrand at the current half-node */
+};
+
+static cp_real t_at(const struct toolpath *tp, uint32_t a, cp_real hp)
+{
+    return tp->surf.t0 + (cp_real)a * hp;
+}
+
+static void kahan_add(struct quad *q, cp_real d)
+{
+    cp_real y = d - q->comp;
+    cp_real s = q->lam + y;
+    q->comp = (s - q->lam) - y;
+    q->lam = s;
+}
+
+/* Reset the quadrature to half-node 0 (Lambda(t0) = 0 exactly). */
+static void quad_reset(const struct canal *c, struct quad *q, struct canal_jet *j)
+{
+    canal_jet(c, c->t0, j);
+    q->lam = CP_R(0.0);
+    q->comp = CP_R(0.0);
+    q->g = canal_g(j);
+}
+
+/* March npan Simpson panels from half-node a: forward (a -> a + 2 npan) or backward
+ * (a -> a - 2 npan). Leaves the jet of the final half-node in *j. */
+static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, uint32_t npan,
+                       int fwd, cp_real hp, struct canal_jet *j)
+{
+    const cp_real w = hp / CP_R(3.0);
+    uint32_t m;
+    for (m = 0; m < npan; m++) {
+        cp_real gm, ge;
+        uint32_t mid = fwd ? a + 1u : a - 1u;
+        uint32_t end = fwd ? a + 2u : a - 2u;
+        canal_jet(&tp->surf, t_at(tp, mid, hp), j);
+        gm = canal_g(j);
+        canal_jet(&tp->surf, t_at(tp, end, hp), j);
+        ge = canal_g(j);
+        /* the same three samples in the same order in both directions */
+        if (fwd) {
+            kahan_add(q, w * (q->g + CP_R(4.0) * gm + ge));
+        } else {
+            kahan_add(q, -(w * (ge + CP_R(4.0) * gm + q->g)));
+        }
+        q->g = ge;
+        a = end;
+    }
+}
+
+/* Position emitted for a surface label at frame f (surface, tool centre or tip). */
+static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h,
+                       cp_real b, struct canal_point *out)
+{
+    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    canal_point(f, h, b, off, out);
+    if (tp->output == TOOLPATH_OUT_TIP) {
+        out->m.z -= tp->tool_r;
+    }
+}
+
+/* Is label (h, b) regular on the surface and (with a tool) on the tool-centre surface? */
+static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b)
+{
+    cp_real den = f->q2 * b * b + h * h;
+    if (!(canal_regularity(f, h, b, CP_R(0.0)) > CUSP_EPS * den)) {
+        return 0;
+    }
+    if (tp->tool_r > CP_R(0.0) && !(canal_regularity(f, h, b, tp->tool_r) > CUSP_EPS * den)) {
+        return 0;
+    }
+    return 1;
+}
+
+/* Homogeneous label of the line starting at angle u on the FIRST circle:
+ * (q0 cos(u/2), sin(u/2)) - MATH-canal §5.2. */
+static void first_label(const struct toolpath *tp, cp_real u, cp_real *alpha, cp_real *b)
+{
+    cp_real sn, cs;
+    cp_sincos(CP_R(0.5) * u, &sn, &cs);
+    *alpha = tp->q0 * cs;
+    *b = sn;
+}
+
+/* Start angle of family-2 line j. */
+static cp_real line_u0(const struct toolpath *tp, uint32_t j)
+{
+    if (tp->n <= 1u) {
+        return tp->u0;
+    }
+    return tp->u0 + (tp->u1 - tp->u0) * ((cp_real)j / (cp_real)(tp->n - 1u));
+}
+
+/* Label of the point at fraction sig in [0, 1] of the way, uniform in contact-frame
+ * angle, from label (ha, ba) to label (hb, bb) on the circle of frame f. Half-angle
+ * directions d = (h/q, b) are rotated: no division by zero (|d| > 0 always). */
+static void label_between(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb,
+                          cp_real bb, cp_real sig, cp_real *h, cp_real *b)
+{
+    cp_real q = cp_sqrt(f->q2);
+    cp_real ax = ha / q, ay = ba, bx = hb / q, by = bb;
+    cp_real na = cp_sqrt(ax * ax + ay * ay), nb = cp_sqrt(bx * bx + by * by);
+    cp_real delta, sn, cs, dx, dy;
+    ax /= na;
+    ay /= na;
+    bx /= nb;
+    by /= nb;
+    delta = cp_atan2(ax * by - ay * bx, ax * bx + ay * by);
+    cp_sincos(sig * delta, &sn, &cs);
+    dx = cs * ax - sn * ay;
+    dy = cs * ay + sn * ax;
+    *h = q * dx;
+    *b = dy;
+}
+
+/* Angle between labels a and b at frame f, radians in [0, pi] (half-angle space x2). */
+static cp_real label_gap(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb, cp_real bb)
+{
+    cp_real q = cp_sqrt(f->q2);
+    cp_real ax = ha / q, ay = ba, bx = hb / q, by = bb;
+    return CP_R(2.0) * cp_fabs(cp_atan2(ax * by - ay * bx, ax * bx + ay * by));
+}
+
+/* Number of uniform-angle segments so that a circular arc of radius rad and angle
+ * gap has sagitta rad (1 - cos(gap / 2 segs)) <= tol. */
+static uint32_t arc_segments(cp_real rad, cp_real gap, cp_real tol)
+{
+    cp_real x, dmax, segs;
+    if (!(rad > tol)) {
+        return 1u;
+    }
+    /* 1 - cos(d/2) <= tol/rad  <=>  d <= 2 acos(1 - tol/rad) = 4 asin(sqrt(tol / 2 rad)) */
+    x = cp_sqrt(tol / (CP_R(2.0) * rad));
+    dmax = CP_R(4.0) * cp_atan2(x, cp_sqrt(CP_R(1.0) - x * x));
+    segs = cp_ceil(gap / (dmax * SAG_MARGIN));
+    if (segs < CP_R(1.0)) {
+        segs = CP_R(1.0);
+    }
+    if (segs > CP_R(70000.0)) {
+        segs = CP_R(70000.0);
+    }
+    return (uint32_t)segs;
+}
+
+/* Richardson estimate of the Simpson panel count over [t0, t1] for
+ * 2 R_max |dLambda| <= TOOLPATH_LAMBDA_TOL. Returns the panel count (>= 1). */
+static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
+{
+    struct quad qc, qf;
+    struct canal_jet j;
+    cp_real hpc = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * RICH_COARSE);
+    cp_real hpf = hpc * CP_R(0.5);
+    cp_real err = CP_R(0.0), ratio, p;
+    uint32_t i;
+    quad_reset(&tp->surf, &qc, &j);
+    quad_reset(&tp->surf, &qf, &j);
+    for (i = 0; i < RICH_COARSE; i++) {
+        cp_real d;
+        quad_march(tp, &qc, 2u * i, 1u, 1, hpc, &j);
+        quad_march(tp, &qf, 4u * i, 2u, 1, hpf, &j);
+        d = cp_fabs(qf.lam - qc.lam);
+        err = d > err ? d : err;
+    }
+    /* fine error ~ |fine - coarse| / 15; panels scale as err^(1/4) */
+    err = err / CP_R(15.0) * CP_R(2.0) * tp->surf.rmax;
+    if (!(err > CP_R(0.0))) {
+        return 1u;
+    }
+    ratio = err / TOOLPATH_LAMBDA_TOL;
+    p = CP_R(2.0) * (cp_real)RICH_COARSE * cp_sqrt(cp_sqrt(ratio)) * CP_R(1.25);
+    if (p < CP_R(1.0)) {
+        return 1u;
+    }
+    if (p > CP_R(4.0e6)) {
+        return 4000000u;
+    }
+    return (uint32_t)cp_ceil(p);
+}
+
+static uint32_t mul_sat(uint32_t a, uint32_t b)
+{
+    return (b != 0u && a > 0xFFFFFFFFu / b) ? 0xFFFFFFFFu : a * b;
+}
+
+/* Walk the whole patch once at twice the output resolution (LINES mode): every
+ * output node and every segment midpoint of every line, plus the link arcs.
+ * Measures the max midpoint sagitta of the emitted positions and checks regularity
+ * and finiteness. Work: n (2N + 1) points, fixed before it starts. */
+static CP_NOINLINE int walk_lines(const struct toolpath *tp, cp_real *sag)
+{
+    struct quad q;
+    struct canal_jet j;
+    struct canal_frame f[3];
+    cp_real lam[3];
+    cp_real hp2 = tp->hp * CP_R(0.5); /* half-node width of the doubled grid */
+    uint32_t half_m = tp->substeps;   /* panels per doubled step: same panel width */
+    uint32_t i, jl;
+    cp_real smax = CP_R(0.0);
+    /* The doubled grid: output nodes of N' = 2N steps, Simpson panels of width 2 hp2
+     * = hp, i.e. substeps panels per half output step (same resolution as the real
+     * run, so its Lambda is at least as accurate). */
+    quad_reset(&tp->surf, &q, &j);
+    canal_frame(&j, &f[0]);
+    lam[0] = q.lam;
+    for (i = 0; i < tp->steps; i++) {
+        uint32_t a = 4u * tp->substeps * i; /* half-node index on the hp2 grid */
+        quad_march(tp, &q, a, half_m, 1, hp2, &j);
+        canal_frame(&j, &f[1]);
+        lam[1] = q.lam;
+        quad_march(tp, &q, a + 2u * half_m, half_m, 1, hp2, &j);
+        canal_frame(&j, &f[2]);
+        lam[2] = q.lam;
+        for (jl = 0; jl < tp->n; jl++) {
+            cp_real al, bl, dx, dy, dz, s2;
+            struct canal_point p0, p1, p2;
+            int k;
+            first_label(tp, line_u0(tp, jl), &al, &bl);
+            for (k = (i == 0u ? 0 : 1); k < 3; k++) {
+                if (!regular(tp, &f[k], al + lam[k] * bl, bl)) {
+                    return CP_ERR_CUSP;
+                }
+            }
+            emit_point(tp, &f[0], al + lam[0] * bl, bl, &p0);
+            emit_point(tp, &f[1], al + lam[1] * bl, bl, &p1);
+            emit_point(tp, &f[2], al + lam[2] * bl, bl, &p2);
+            dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
+            dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
+            dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
+            s2 = cp_sqrt(dx * dx + dy * dy + dz * dz);
+            if (!cp_isfinite(s2) || !cp_isfinite(p2.m.x + p2.m.y + p2.m.z)) {
+                return CP_ERR_NUMERIC;
+            }
+            smax = s2 > smax ? s2 : smax;
+        }
+        f[0] = f[2];
+        lam[0] = lam[2];
+    }
+    *sag = smax;
+    return CP_OK;
+}
+
+/* Derive the link count of LINES mode: the largest angle gap between neighbouring
+ * lines at t0 and t1 on circles of radius (R - off)/q. */
+static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
+{
+    struct quad q;
+    struct canal_jet j;
+    struct canal_frame f;
+    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    uint32_t end, jl, segs, worst = 1u;
+    if (tp->n <= 1u) {
+        tp->link = 0u;
+        return CP_OK;
+    }
+    for (end = 0; end < 2u; end++) {
+        quad_reset(&tp->surf, &q, &j);
+        if (end == 1u) {
+            quad_march(tp, &q, 0u, (uint32_t)tp->steps * tp->substeps, 1, tp->hp, &j);
+        }
+        canal_frame(&j, &f);
+        for (jl = 0; jl + 1u < tp->n; jl++) {
+            cp_real aa, ba, ab, bb, rad;
+            first_label(tp, line_u0(tp, jl), &aa, &ba);
+            first_label(tp, line_u0(tp, jl + 1u), &ab, &bb);
+            rad = (f.r - off) / cp_sqrt(f.q2);
+            segs = arc_segments(rad, label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb), tol);
+            worst = segs > worst ? segs : worst;
+        }
+    }
+    if (worst - 1u > CP_MAX_LINK) {
+        return CP_ERR_TOL;
+    }
+    tp->link = (uint16_t)(worst - 1u);
+    return CP_OK;
+}
+
+static int validate(const struct toolpath_cfg *cfg)
+{
+    if (cfg->mode > TOOLPATH_CIRCLES || cfg->output > TOOLPATH_OUT_TIP) {
+        return CP_ERR_INVAL;
+    }
+    if (!cp_isfinite(cfg->u0) || !cp_isfinite(cfg->u1) || !cp_isfinite(cfg->tol) ||
+        !cp_isfinite(cfg->tool_r)) {
+        return CP_ERR_NONFINITE;
+    }
+    if (cfg->n == 0u || cp_fabs(cfg->u0) > CP_PI || cp_fabs(cfg->u1) > CP_PI ||
+        (cfg->u0 == cfg->u1 && cfg->n > 1u)) {
+        return CP_ERR_RANGE;
+    }
+    if (cfg->tol != CP_R(0.0) && (cfg->tol < CP_R(1e-5) || cfg->tol > CP_R(10.0))) {
+        return CP_ERR_RANGE;
+    }
+    if (cfg->steps == 0u && cfg->tol == CP_R(0.0)) {
+        return CP_ERR_RANGE;
+    }
+    if (cfg->n > CP_MAX_LINES || cfg->steps > CP_MAX_STEPS || cfg->substeps > CP_MAX_SUBSTEPS) {
+        return CP_ERR_TOO_MANY;
+    }
+    if (cfg->link != TOOLPATH_LINK_AUTO && cfg->link > CP_MAX_LINK) {
+        return CP_ERR_RANGE;
+    }
+    if (cfg->tool_r < CP_R(0.0)) {
+        return CP_ERR_TOOL;
+    }
+    if (cfg->output == TOOLPATH_OUT_SURFACE && cfg->tool_r != CP_R(0.0)) {
+        return CP_ERR_INVAL;
+    }
+    return CP_OK;
+}
+
+static int init_lines(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
+{
+    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
+    cp_real sag = CP_R(0.0);
+    uint32_t steps = cfg->steps ? cfg->steps : 16u;
+    int round, err;
+    for (round = 0; round <= WALK_MAX_ROUNDS; round++) {
+        uint32_t m = (panels + steps - 1u) / steps;
+        if (m < 1u) {
+            m = 1u;
+        }
+        if (m > CP_MAX_SUBSTEPS) {
+            return CP_ERR_TOL;
+        }
+        tp->steps = (uint16_t)steps;
+        tp->substeps = cfg->substeps ? cfg->substeps : (uint16_t)m;
+        tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * tp->steps * tp->substeps);
+        err = walk_lines(tp, &sag);
+        if (err != CP_OK) {
+            return err;
+        }
+        if (cfg->steps != 0u || sag <= SAG_MARGIN * cfg->tol) {
+            break;
+        }
+        if (round == WALK_MAX_ROUNDS) {
+            return CP_ERR_TOL;
+        }
+        /* sagitta ~ h^2: scale the step count, rounding up, with 5% headroom */
+        {
+            cp_real want = (cp_real)steps * cp_sqrt(sag / (SAG_MARGIN * cfg->tol)) * CP_R(1.05);
+            if (want > (cp_real)CP_MAX_STEPS) {
+                if (steps == CP_MAX_STEPS) {
+                    return CP_ERR_TOL;
+                }
+                want = (cp_real)CP_MAX_STEPS;
+            }
+            steps = (uint32_t)cp_ceil(want);
+        }
+    }
+    if (cfg->link == TOOLPATH_LINK_AUTO) {
+        err = lines_link(tp, tol);
+        if (err != CP_OK) {
+            return err;
+        }
+    } else {
+        tp->link = tp->n > 1u ? cfg->link : 0u;
+    }
+    return CP_OK;
+}
+
+/* Max midpoint sagitta of the link moves of CIRCLES mode: both bounding lines
+ * (labels (aa, ba) and (ab, bb)), every grid step, midpoints on the doubled grid. */
+static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t gsteps, cp_real aa,
+                                            cp_real ba, cp_real ab, cp_real bb)
+{
+    struct quad q2;
+    struct canal_jet j;
+    struct canal_frame f0, f1, f2;
+    cp_real l0, l1, smax = CP_R(0.0);
+    uint32_t i, m = tp->substeps;
+    quad_reset(&tp->surf, &q2, &j);
+    canal_frame(&j, &f0);
+    l0 = q2.lam;
+    for (i = 0; i < gsteps; i++) {
+        uint32_t side;
+        /* m panels of width hp per half grid step, on the hp/2 half-node grid */
+        quad_march(tp, &q2, 4u * m * i, m, 1, tp->hp * CP_R(0.5), &j);
+        canal_frame(&j, &f1);
+        l1 = q2.lam;
+        quad_march(tp, &q2, 4u * m * i + 2u * m, m, 1, tp->hp * CP_R(0.5), &j);
+        canal_frame(&j, &f2);
+        for (side = 0; side < 2u; side++) {
+            struct canal_point p0, p1, p2;
+            cp_real al = side ? ab : aa, bl = side ? bb : ba, dx, dy, dz, s2;
+            emit_point(tp, &f0, al + l0 * bl, bl, &p0);
+            emit_point(tp, &f1, al + l1 * bl, bl, &p1);
+            emit_point(tp, &f2, al + q2.lam * bl, bl, &p2);
+            dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
+            dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
+            dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
+            s2 = cp_sqrt(dx * dx + dy * dy + dz * dz);
+            smax = s2 > smax ? s2 : smax;
+        }
+        f0 = f2;
+        l0 = q2.lam;
+    }
+    return smax;
+}
+
+/* CIRCLES mode: n circles at nodes c (link + 1), c = 0..n-1; the grid has
+ * (n - 1)(link + 1) steps (at least 1). */
+static int init_circles(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
+{
+    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
+    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    uint32_t gsteps, m, c, i, worst = 1u, link;
+    struct quad q;
+    struct canal_jet j;
+    struct canal_frame f;
+    cp_real aa, ba, ab, bb;
+    int round;
+    link = cfg->link == TOOLPATH_LINK_AUTO ? 0u : cfg->link;
+    for (round = 0; round <= WALK_MAX_ROUNDS; round++) {
+        gsteps = tp->n > 1u ? (uint32_t)(tp->n - 1u) * (link + 1u) : 1u;
+        if (gsteps > CP_MAX_STEPS * 4u) {
+            return CP_ERR_TOO_MANY;
+        }
+        m = (panels + gsteps - 1u) / gsteps;
+        m = m < 1u ? 1u : m;
+        if (cfg->substeps) {
+            m = cfg->substeps;
+        }
+        if (m > CP_MAX_SUBSTEPS) {
+            return CP_ERR_TOL;
+        }
+        tp->substeps = (uint16_t)m;
+        tp->link = (uint16_t)link;
+        tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
+        /* walk every node: regularity of both bounding lines and of the circle
+         * points, sagitta of the link segments (midpoints on the doubled grid) */
+        quad_reset(&tp->surf, &q, &j);
+        canal_frame(&j, &f);
+        worst = 1u;
+        for (i = 0; i <= gsteps; i++) {
+            cp_real gap;
+            if (i > 0u) {
+                quad_march(tp, &q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
+                canal_frame(&j, &f);
+            }
+            first_label(tp, tp->u0, &aa, &ba);
+            first_label(tp, tp->u1, &ab, &bb);
+            if (!regular(tp, &f, aa + q.lam * ba, ba) || !regular(tp, &f, ab + q.lam * bb, bb)) {
+                return CP_ERR_CUSP;
+            }
+            if (i % (link + 1u) == 0u) {
+                /* a circle: its points, and the step count from its exact sagitta */
+                uint32_t s;
+                gap = label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb);
+                s = arc_segments((f.r - off) / cp_sqrt(f.q2), gap, tol);
+                worst = s > worst ? s : worst;
+                for (c = 0; c <= 16u; c++) {
+                    cp_real hh, b2;
+                    label_between(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
+                                  (cp_real)c / CP_R(16.0), &hh, &b2);
+                    if (!regular(tp, &f, hh, b2)) {
+                        return CP_ERR_CUSP;
+                    }
+                }
+            }
+        }
+        /* link sagitta along the bounding lines: compare nodes with midpoints */
+        if (tp->n > 1u && cfg->link == TOOLPATH_LINK_AUTO) {
+            cp_real smax = circles_link_sag(tp, gsteps, aa, ba, ab, bb);
+            if (smax > SAG_MARGIN * tol) {
+                cp_real want;
+                if (round == WALK_MAX_ROUNDS) {
+                    return CP_ERR_TOL;
+                }
+                want = (cp_real)(link + 1u) * cp_sqrt(smax / (SAG_MARGIN * tol)) * CP_R(1.05);
+                link = (uint32_t)cp_ceil(want) - 1u;
+                if (link > CP_MAX_LINK) {
+                    return CP_ERR_TOL;
+                }
+                continue;
+            }
+        }
+        break;
+    }
+    if (cfg->steps != 0u) {
+        tp->steps = cfg->steps;
+    } else {
+        if (worst > CP_MAX_STEPS) {
+            return CP_ERR_TOL;
+        }
+        tp->steps = (uint16_t)worst;
+    }
+    return CP_OK;
+}
+
+int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
+{
+    struct canal_jet j;
+    struct canal_frame f;
+    uint32_t panels;
+    int err;
+    if (tp == NULL || cfg == NULL) {
+        return CP_ERR_INVAL;
+    }
+    err = canal_init(&tp->surf, &cfg->surf);
+    if (err != CP_OK) {
+        return err;
+    }
+    err = validate(cfg);
+    if (err != CP_OK) {
+        return err;
+    }
+    if (cfg->tool_r >= tp->surf.rmin) {
+        return CP_ERR_TOOL;
+    }
+    tp->mode = cfg->mode;
+    tp->output = cfg->output;
+    tp->n = cfg->n;
+    tp->u0 = cfg->u0;
+    tp->u1 = cfg->u1;
+    tp->tool_r = cfg->tool_r;
+    canal_jet(&tp->surf, tp->surf.t0, &j);
+    canal_frame(&j, &f);
+    tp->q0 = cp_sqrt(f.q2);
+    panels = cfg->substeps ? 0u : lambda_panels(tp);
+    if (tp->mode == TOOLPATH_LINES) {
+        err = init_lines(tp, cfg, panels);
+    } else {
+        err = init_circles(tp, cfg, panels);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    tp->count = mul_sat((uint32_t)tp->n, (uint32_t)tp->steps + 1u) +
+                mul_sat((uint32_t)tp->n - 1u, tp->link);
+    return toolpath_seek(tp, 0u);
+}
+
+uint32_t toolpath_count(const struct toolpath *tp)
+{
+    return tp->count;
+}
+
+/* Bring the quadrature to half-node `target` along the deterministic route of the
+ * stream: LINES even lines march forward from 0, odd lines forward to the end and
+ * then backward; CIRCLES march forward. `back` selects the backward route. */
+static void quad_goto(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
+{
+    struct quad q;
+    uint32_t m = tp->substeps;
+    uint32_t last = 2u * m * (tp->mode == TOOLPATH_LINES
+                                  ? (uint32_t)tp->steps
+                                  : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * (tp->link + 1u) : 1u));
+    quad_reset(&tp->surf, &q, j);
+    if (!back) {
+        quad_march(tp, &q, 0u, target / 2u, 1, tp->hp, j);
+    } else {
+        quad_march(tp, &q, 0u, last / 2u, 1, tp->hp, j);
+        quad_march(tp, &q, last, (last - target) / 2u, 0, tp->hp, j);
+        if (target == 0u) {
+            quad_reset(&tp->surf, &q, j);
+        }
+    }
+    tp->node = target;
+    tp->lam = q.lam;
+    tp->comp = q.comp;
+    tp->g_node = q.g;
+}
+
+int toolpath_seek(struct toolpath *tp, uint32_t k)
+{
+    if (k > tp->count) {
+        return CP_ERR_RANGE;
+    }
+    tp->k = k;
+    tp->node = 0xFFFFFFFFu; /* no quadrature state yet: next() positions it */
+    return CP_OK;
+}
+
+/* Advance the quadrature from its node to half-node `target` (one output step,
+ * either direction), or position it from scratch if it is elsewhere. */
+static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
+{
+    struct quad q;
+    uint32_t m = tp->substeps;
+    if (tp->node != 0xFFFFFFFFu && target == tp->node + 2u * m && !back) {
+        q.lam = tp->lam;
+        q.comp = tp->comp;
+        q.g = tp->g_node;
+        quad_march(tp, &q, tp->node, m, 1, tp->hp, j);
+    } else if (tp->node != 0xFFFFFFFFu && back && tp->node == target + 2u * m) {
+        q.lam = tp->lam;
+        q.comp = tp->comp;
+        q.g = tp->g_node;
+        quad_march(tp, &q, tp->node, m, 0, tp->hp, j);
+        if (target == 0u) {
+            quad_reset(&tp->surf, &q, j);
+        }
+    } else if (tp->node == target && tp->node != 0xFFFFFFFFu) {
+        canal_jet(&tp->surf, t_at(tp, target, tp->hp), j);
+        return;
+    } else {
+        quad_goto(tp, target, back, j);
+        return;
+    }
+    tp->node = target;
+    tp->lam = q.lam;
+    tp->comp = q.comp;
+    tp->g_node = q.g;
+}
+
+static int finish(const struct toolpath *tp, const struct canal_point *cp, cp_real t, int line,
+                  uint32_t index, struct toolpath_pt *pt)
+{
+    if (!cp_isfinite(cp->m.x) || !cp_isfinite(cp->m.y) || !cp_isfinite(cp->m.z) ||
+        !cp_isfinite(cp->n.x) || !cp_isfinite(cp->n.y) || !cp_isfinite(cp->n.z)) {
+        return CP_ERR_NUMERIC;
+    }
+    (void)tp;
+    pt->p = cp->m;
+    pt->n = cp->n;
+    pt->t = t;
+    pt->line = (int16_t)line;
+    pt->index = (uint16_t)index;
+    return CP_OK;
+}
+
+static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
+{
+    uint32_t block = (uint32_t)tp->steps + 1u + tp->link;
+    uint32_t jl = tp->k / block, r = tp->k % block, i, a;
+    uint32_t m2 = 2u * tp->substeps;
+    int back = (int)(jl & 1u);
+    struct canal_jet j;
+    struct canal_frame f;
+    struct canal_point cp;
+    cp_real al, bl;
+    if (r <= tp->steps) {
+        i = back ? tp->steps - r : r;
+        a = i * m2;
+        if (r == 0u && !back) {
+            /* an even line starts at t0: exact Lambda = 0 */
+            struct quad q;
+            quad_reset(&tp->surf, &q, &j);
+            tp->node = 0u;
+            tp->lam = q.lam;
+            tp->comp = q.comp;
+            tp->g_node = q.g;
+        } else if (r == 0u) {
+            /* an odd line starts where the previous even line ended */
+            quad_to(tp, a, 0, &j);
+        } else {
+            quad_to(tp, a, back, &j);
+        }
+        canal_frame(&j, &f);
+        first_label(tp, line_u0(tp, jl), &al, &bl);
+        emit_point(tp, &f, al + tp->lam * bl, bl, &cp);
+        return finish(tp, &cp, t_at(tp, a, tp->hp), (int)jl, i, pt);
+    }
+    /* link point r - steps (1..link) after line jl, at its end node */
+    {
+        cp_real aa, ba, ab, bb, hh, b2;
+        uint32_t kk = r - tp->steps;
+        i = back ? 0u : tp->steps;
+        a = i * m2;
+        quad_to(tp, a, back, &j);
+        canal_frame(&j, &f);
+        first_label(tp, line_u0(tp, jl), &aa, &ba);
+        first_label(tp, line_u0(tp, jl + 1u), &ab, &bb);
+        label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
+                      (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);
+        emit_point(tp, &f, hh, b2, &cp);
+        return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
+    }
+}
+
+static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
+{
+    uint32_t block = (uint32_t)tp->steps + 1u + tp->link;
+    uint32_t c = tp->k / block, r = tp->k % block, a;
+    uint32_t m2 = 2u * tp->substeps;
+    int back = (int)(c & 1u);
+    struct canal_jet j;
+    struct canal_frame f;
+    struct canal_point cp;
+    cp_real aa, ba, ab, bb, hh, b2;
+    if (r <= tp->steps) {
+        uint32_t i = back ? tp->steps - r : r;
+        a = c * (tp->link + 1u) * m2;
+        quad_to(tp, a, 0, &j);
+        canal_frame(&j, &f);
+        first_label(tp, tp->u0, &aa, &ba);
+        first_label(tp, tp->u1, &ab, &bb);
+        label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
+                      (cp_real)i / (cp_real)tp->steps, &hh, &b2);
+        emit_point(tp, &f, hh, b2, &cp);
+        return finish(tp, &cp, t_at(tp, a, tp->hp), (int)c, i, pt);
+    }
+    {
+        uint32_t kk = r - tp->steps;
+        a = (c * (tp->link + 1u) + kk) * m2;
+        quad_to(tp, a, 0, &j);
+        canal_frame(&j, &f);
+        first_label(tp, back ? tp->u0 : tp->u1, &aa, &ba);
+        emit_point(tp, &f, aa + tp->lam * ba, ba, &cp);
+        return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
+    }
+}
+
+int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
+{
+    int err;
+    if (tp->k >= tp->count) {
+        return CP_ERR_DONE;
+    }
+    err = tp->mode == TOOLPATH_LINES ? next_lines(tp, pt) : next_circles(tp, pt);
+    if (err == CP_OK) {
+        tp->k++;
+    }
+    return err;
+}
+
+#if CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct toolpath) <= 2u * CP_TOOLPATH_BUDGET, toolpath_fits_budget);
+#else
+CP_STATIC_ASSERT(sizeof(struct toolpath) <= CP_TOOLPATH_BUDGET, toolpath_fits_budget);
+#endif
