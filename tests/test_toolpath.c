@@ -1,0 +1,243 @@
+/* test_toolpath.c - deterministic kernels, raster structure, links, tool offset.
+ * SPDX-License-Identifier: MIT
+ *
+ * Accuracy against the independent reference lives in test_canal_ref.c; these tests
+ * check the structure of the stream: zigzag order, link moves on the right circles
+ * and lines, no gaps, ball-tool geometry, and the maths kernels against libm.
+ */
+#include "cp_math.h"
+#include "test.h"
+#include "toolpath.h"
+
+#define PI_D 3.14159265358979323846
+
+int test_math_kernels(void)
+{
+    double worst_sc = 0.0, worst_at = 0.0;
+    unsigned i, st = 12345u;
+    for (i = 0; i < 20000u; i++) {
+        double x = ((double)(test_prng(&st) % 2000001u) / 1000000.0 - 1.0) * 40.0;
+        cp_real s, c;
+        double y, e;
+        cp_sincos((cp_real)x, &s, &c);
+        /* compare with the double of the float argument actually used */
+        x = (double)(cp_real)x;
+        e = fabs((double)s - sin(x)) + fabs((double)c - cos(x));
+        worst_sc = e > worst_sc ? e : worst_sc;
+        y = ((double)(test_prng(&st) % 2000001u) / 1000000.0 - 1.0) * 5.0;
+        x = ((double)(test_prng(&st) % 2000001u) / 1000000.0 - 1.0) * 5.0;
+        y = (double)(cp_real)y;
+        x = (double)(cp_real)x;
+        e = fabs((double)cp_atan2((cp_real)y, (cp_real)x) - atan2(y, x));
+        worst_at = e > worst_at ? e : worst_at;
+    }
+    TEST_NOTE("sincos max |err| %.3g, atan2 max |err| %.3g rad (%s)\n", worst_sc, worst_at,
+              CP_REAL_NAME);
+    CHECK(worst_sc <= 4.0e-7);
+    CHECK(worst_at <= 4.0e-7);
+    CHECK((double)cp_atan2(CP_R(0.0), CP_R(0.0)) == 0.0);
+    CHECK(fabs((double)cp_atan2(CP_R(0.0), CP_R(-1.0)) - PI_D) < 4e-7);
+    return 0;
+}
+
+static void paper_cfg(struct toolpath_cfg *c)
+{
+    static const struct toolpath_cfg zero;
+    *c = zero;
+    c->surf.curve = CANAL_ARC;
+    c->surf.radius = CANAL_R_COS;
+    c->surf.cp[0] = CP_R(0.0);
+    c->surf.cp[1] = CP_R(0.0);
+    c->surf.cp[2] = CP_R(3.0);
+    c->surf.cp[3] = CP_R(0.0);
+    c->surf.cp[4] = CP_TWO_PI;
+    c->surf.rp[0] = CP_R(5.5);
+    c->surf.rp[1] = CP_R(10.5);
+    c->surf.rp[2] = CP_R(2.0);
+    c->mode = TOOLPATH_LINES;
+    c->output = TOOLPATH_OUT_SURFACE;
+    c->n = 5;
+    c->u0 = CP_R(-0.5);
+    c->u1 = CP_R(0.18);
+    c->tol = CP_R(0.002);
+    c->link = TOOLPATH_LINK_AUTO;
+}
+
+static double dist3(const struct cp_vec3 *a, const struct cp_vec3 *b)
+{
+    double dx = (double)a->x - (double)b->x, dy = (double)a->y - (double)b->y,
+           dz = (double)a->z - (double)b->z;
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* Distance of p from the sphere of centre (C(t), R(t)) minus R, and the angle
+ * condition (p - rho).rho' = -R R' (MATH-canal §11), both at the point's own t. */
+static void sphere_residual(const struct toolpath *tp, const struct toolpath_pt *pt,
+                            double *dr, double *dang)
+{
+    struct canal_jet j;
+    double ex, ey, ez, r;
+    canal_jet(&tp->surf, pt->t, &j);
+    ex = (double)pt->p.x - (double)j.x;
+    ey = (double)pt->p.y - (double)j.y;
+    ez = (double)pt->p.z - (double)j.r;
+    r = sqrt(ex * ex + ey * ey + ez * ez);
+    *dr = fabs(r - (double)j.r);
+    *dang = fabs(ex * (double)j.dx + ey * (double)j.dy + ez * (double)j.dr + (double)j.r * (double)j.dr) /
+            sqrt((double)j.dx * (double)j.dx + (double)j.dy * (double)j.dy + (double)j.dr * (double)j.dr);
+}
+
+int test_toolpath_zigzag(void)
+{
+    struct toolpath_cfg cfg;
+    struct toolpath tp;
+    struct toolpath_pt pt, prev;
+    uint32_t k = 0, n;
+    double maxgap = 0.0, maxr = 0.0, maxa = 0.0, dr, da;
+    int expect_line = 0;
+    uint32_t expect_index = 0;
+    paper_cfg(&cfg);
+    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    n = toolpath_count(&tp);
+    CHECK_EQ_INT(n, (uint32_t)cfg.n * (tp.steps + 1u) + (uint32_t)(cfg.n - 1u) * tp.link);
+    CHECK(tp.link >= 1u);
+    while (toolpath_next(&tp, &pt) == CP_OK) {
+        if (pt.line >= 0) {
+            /* order: line j, index 0..steps on even lines, steps..0 on odd lines */
+            CHECK_EQ_INT(pt.line, expect_line);
+            CHECK_EQ_INT(pt.index, (expect_line & 1) ? tp.steps - expect_index : expect_index);
+            expect_index++;
+            if (expect_index > tp.steps) {
+                expect_index = 0;
+                expect_line++;
+            }
+        } else {
+            /* a link point: on the characteristic circle at the line's end t */
+            CHECK(pt.t == ((expect_line & 1) ? tp.surf.t0 + (cp_real)(2u * tp.substeps * tp.steps) * tp.hp
+                                             : tp.surf.t0));
+        }
+        sphere_residual(&tp, &pt, &dr, &da);
+        maxr = dr > maxr ? dr : maxr;
+        maxa = da > maxa ? da : maxa;
+        if (k > 0u) {
+            double g = dist3(&pt.p, &prev.p);
+            maxgap = g > maxgap ? g : maxgap;
+        }
+        prev = pt;
+        k++;
+    }
+    CHECK_EQ_INT(k, n);
+    CHECK_EQ_INT(toolpath_next(&tp, &pt), CP_ERR_DONE);
+    TEST_NOTE("zigzag: %u points, steps %u, substeps %u, link %u, max step %.4f mm, sphere "
+              "residual %.2g mm, envelope residual %.2g mm\n",
+              (unsigned)n, tp.steps, tp.substeps, tp.link, maxgap, maxr, maxa);
+    /* no gaps: every move is short (a chord of <= 2 um sagitta on radii <= 16 mm) */
+    CHECK(maxgap < 0.6);
+    CHECK(maxr < 2e-5);
+    CHECK(maxa < 2e-4);
+    return 0;
+}
+
+int test_toolpath_circles(void)
+{
+    struct toolpath_cfg cfg;
+    struct toolpath tp;
+    struct toolpath_pt pt, prev;
+    uint32_t k = 0;
+    double maxgap = 0.0, maxr = 0.0, dr, da;
+    paper_cfg(&cfg);
+    cfg.mode = TOOLPATH_CIRCLES;
+    cfg.n = 48;
+    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    while (toolpath_next(&tp, &pt) == CP_OK) {
+        if (pt.line >= 0) {
+            /* circle j sits on node j (link + 1) */
+            CHECK(pt.t == tp.surf.t0 + (cp_real)((uint32_t)pt.line * (tp.link + 1u) * 2u * tp.substeps) * tp.hp);
+        }
+        sphere_residual(&tp, &pt, &dr, &da);
+        maxr = dr > maxr ? dr : maxr;
+        if (k > 0u) {
+            double g = dist3(&pt.p, &prev.p);
+            maxgap = g > maxgap ? g : maxgap;
+        }
+        prev = pt;
+        k++;
+    }
+    CHECK_EQ_INT(k, toolpath_count(&tp));
+    TEST_NOTE("circles: %u points, steps %u, link %u, max step %.4f mm\n", (unsigned)k, tp.steps,
+              tp.link, maxgap);
+    CHECK(maxgap < 0.6);
+    CHECK(maxr < 2e-5);
+    return 0;
+}
+
+int test_toolpath_tool(void)
+{
+    struct toolpath_cfg cfg;
+    struct toolpath tps, tpc, tpt;
+    struct toolpath_pt ps, pc, pq;
+    const cp_real rt = CP_R(2.0);
+    double worst = 0.0;
+    paper_cfg(&cfg);
+    cfg.steps = 200;
+    cfg.tol = CP_R(0.0);
+    cfg.link = 4;
+    CHECK_EQ_INT(toolpath_init(&tps, &cfg), CP_OK);
+    cfg.output = TOOLPATH_OUT_CENTRE;
+    cfg.tool_r = rt;
+    CHECK_EQ_INT(toolpath_init(&tpc, &cfg), CP_OK);
+    cfg.output = TOOLPATH_OUT_TIP;
+    CHECK_EQ_INT(toolpath_init(&tpt, &cfg), CP_OK);
+    CHECK_EQ_INT(toolpath_count(&tps), toolpath_count(&tpc));
+    while (toolpath_next(&tps, &ps) == CP_OK) {
+        double e;
+        CHECK_EQ_INT(toolpath_next(&tpc, &pc), CP_OK);
+        CHECK_EQ_INT(toolpath_next(&tpt, &pq), CP_OK);
+        /* centre = surface point - r n; tip = centre - r z; |n| = 1 */
+        e = fabs((double)pc.p.x - ((double)ps.p.x - (double)rt * (double)ps.n.x)) +
+            fabs((double)pc.p.y - ((double)ps.p.y - (double)rt * (double)ps.n.y)) +
+            fabs((double)pc.p.z - ((double)ps.p.z - (double)rt * (double)ps.n.z)) +
+            fabs((double)pq.p.z - ((double)pc.p.z - (double)rt)) +
+            fabs(sqrt((double)ps.n.x * (double)ps.n.x + (double)ps.n.y * (double)ps.n.y +
+                      (double)ps.n.z * (double)ps.n.z) - 1.0);
+        worst = e > worst ? e : worst;
+    }
+    TEST_NOTE("tool offset consistency %.2g mm\n", worst);
+    CHECK(worst < 2e-5);
+    /* a tool that does not fit is rejected; so is a tool without a tool output */
+    cfg.tool_r = CP_R(5.0);
+    CHECK_EQ_INT(toolpath_init(&tpc, &cfg), CP_ERR_TOOL);
+    cfg.tool_r = CP_R(-1.0);
+    CHECK_EQ_INT(toolpath_init(&tpc, &cfg), CP_ERR_TOOL);
+    cfg.output = TOOLPATH_OUT_SURFACE;
+    cfg.tool_r = CP_R(1.0);
+    CHECK_EQ_INT(toolpath_init(&tpc, &cfg), CP_ERR_INVAL);
+    return 0;
+}
+
+int test_toolpath_deterministic(void)
+{
+    /* two inits of the same job give bit-identical streams; a second iterator
+     * seeked into the middle of a backward line agrees bit for bit */
+    struct toolpath_cfg cfg;
+    static struct toolpath a, b;
+    struct toolpath_pt pa, pb;
+    uint32_t k, start;
+    paper_cfg(&cfg);
+    cfg.n = 4;
+    CHECK_EQ_INT(toolpath_init(&a, &cfg), CP_OK);
+    CHECK_EQ_INT(toolpath_init(&b, &cfg), CP_OK);
+    start = (uint32_t)(a.steps + 1u + a.link) + a.steps / 3u; /* inside line 1 (backward) */
+    for (k = 0; k < start; k++) {
+        CHECK_EQ_INT(toolpath_next(&a, &pa), CP_OK);
+    }
+    CHECK_EQ_INT(toolpath_seek(&b, start), CP_OK);
+    for (k = start; k < toolpath_count(&a); k++) {
+        CHECK_EQ_INT(toolpath_next(&a, &pa), CP_OK);
+        CHECK_EQ_INT(toolpath_next(&b, &pb), CP_OK);
+        CHECK(pa.p.x == pb.p.x && pa.p.y == pb.p.y && pa.p.z == pb.p.z);
+        CHECK(pa.line == pb.line && pa.index == pb.index);
+    }
+    CHECK_EQ_INT(toolpath_seek(&b, toolpath_count(&b) + 1u), CP_ERR_RANGE);
+    return 0;
+}
