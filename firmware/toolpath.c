@@ -107,6 +107,11 @@ static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_re
 static void first_label(const struct toolpath *tp, cp_real u, cp_real *alpha, cp_real *b)
 {
     cp_real sn, cs;
+    if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
+        *alpha = u; /* w = lambda(t0): the label (w, 1) */
+        *b = CP_R(1.0);
+        return;
+    }
     cp_sincos(CP_R(0.5) * u, &sn, &cs);
     *alpha = tp->q0 * cs;
     *b = sn;
@@ -119,6 +124,22 @@ static cp_real line_u0(const struct toolpath *tp, uint32_t j)
         return tp->u0;
     }
     return tp->u0 + (tp->u1 - tp->u0) * ((cp_real)j / (cp_real)(tp->n - 1u));
+}
+
+/* Label (h, b) at frame f (Lambda = lam) of the CIRCLES-mode boundary u: the family-2
+ * line that starts at u (span LINES) or the fixed contact-frame angle u (span ANGLE). */
+static void bound_label(const struct toolpath *tp, cp_real u, const struct canal_frame *f,
+                        cp_real lam, cp_real *h, cp_real *b)
+{
+    if (tp->span == TOOLPATH_SPAN_ANGLE) {
+        cp_real sn, cs;
+        cp_sincos(CP_R(0.5) * u, &sn, &cs);
+        *h = cp_sqrt(f->q2) * cs;
+        *b = sn;
+        return;
+    }
+    first_label(tp, u, h, b);
+    *h += lam * *b;
 }
 
 /* Label of the point at fraction sig in [0, 1] of the way, uniform in contact-frame
@@ -306,14 +327,19 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
 
 static int validate(const struct toolpath_cfg *cfg)
 {
-    if (cfg->mode > TOOLPATH_CIRCLES || cfg->output > TOOLPATH_OUT_TIP) {
+    cp_real umax;
+    if (cfg->mode > TOOLPATH_CIRCLES || cfg->output > TOOLPATH_OUT_TIP ||
+        cfg->labels > TOOLPATH_LABEL_LAMBDA || cfg->span > TOOLPATH_SPAN_ANGLE ||
+        (cfg->span == TOOLPATH_SPAN_ANGLE &&
+         (cfg->mode != TOOLPATH_CIRCLES || cfg->labels != TOOLPATH_LABEL_ANGLE))) {
         return CP_ERR_INVAL;
     }
     if (!cp_isfinite(cfg->u0) || !cp_isfinite(cfg->u1) || !cp_isfinite(cfg->tol) ||
         !cp_isfinite(cfg->tool_r)) {
         return CP_ERR_NONFINITE;
     }
-    if (cfg->n == 0u || cp_fabs(cfg->u0) > CP_PI || cp_fabs(cfg->u1) > CP_PI ||
+    umax = cfg->labels == TOOLPATH_LABEL_LAMBDA ? CANAL_COORD_MAX : CP_PI;
+    if (cfg->n == 0u || cp_fabs(cfg->u0) > umax || cp_fabs(cfg->u1) > umax ||
         (cfg->u0 == cfg->u1 && cfg->n > 1u)) {
         return CP_ERR_RANGE;
     }
@@ -390,8 +416,7 @@ static int init_lines(struct toolpath *tp, const struct toolpath_cfg *cfg, uint3
 
 /* Max midpoint sagitta of the link moves of CIRCLES mode: both bounding lines
  * (labels (aa, ba) and (ab, bb)), every grid step, midpoints on the doubled grid. */
-static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t gsteps, cp_real aa,
-                                            cp_real ba, cp_real ab, cp_real bb)
+static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t gsteps)
 {
     struct quad q2;
     struct canal_jet j;
@@ -411,10 +436,13 @@ static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t 
         canal_frame(&j, &f2);
         for (side = 0; side < 2u; side++) {
             struct canal_point p0, p1, p2;
-            cp_real al = side ? ab : aa, bl = side ? bb : ba, dx, dy, dz, s2;
-            emit_point(tp, &f0, al + l0 * bl, bl, &p0);
-            emit_point(tp, &f1, al + l1 * bl, bl, &p1);
-            emit_point(tp, &f2, al + q2.lam * bl, bl, &p2);
+            cp_real u = side ? tp->u1 : tp->u0, hl, bl, dx, dy, dz, s2;
+            bound_label(tp, u, &f0, l0, &hl, &bl);
+            emit_point(tp, &f0, hl, bl, &p0);
+            bound_label(tp, u, &f1, l1, &hl, &bl);
+            emit_point(tp, &f1, hl, bl, &p1);
+            bound_label(tp, u, &f2, q2.lam, &hl, &bl);
+            emit_point(tp, &f2, hl, bl, &p2);
             dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
             dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
             dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
@@ -467,21 +495,20 @@ static int init_circles(struct toolpath *tp, const struct toolpath_cfg *cfg, uin
                 quad_march(tp, &q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
                 canal_frame(&j, &f);
             }
-            first_label(tp, tp->u0, &aa, &ba);
-            first_label(tp, tp->u1, &ab, &bb);
-            if (!regular(tp, &f, aa + q.lam * ba, ba) || !regular(tp, &f, ab + q.lam * bb, bb)) {
+            bound_label(tp, tp->u0, &f, q.lam, &aa, &ba);
+            bound_label(tp, tp->u1, &f, q.lam, &ab, &bb);
+            if (!regular(tp, &f, aa, ba) || !regular(tp, &f, ab, bb)) {
                 return CP_ERR_CUSP;
             }
             if (i % (link + 1u) == 0u) {
                 /* a circle: its points, and the step count from its exact sagitta */
                 uint32_t s;
-                gap = label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb);
+                gap = label_gap(&f, aa, ba, ab, bb);
                 s = arc_segments((f.r - off) / cp_sqrt(f.q2), gap, tol);
                 worst = s > worst ? s : worst;
                 for (c = 0; c <= 16u; c++) {
                     cp_real hh, b2;
-                    label_between(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
-                                  (cp_real)c / CP_R(16.0), &hh, &b2);
+                    label_between(&f, aa, ba, ab, bb, (cp_real)c / CP_R(16.0), &hh, &b2);
                     if (!regular(tp, &f, hh, b2)) {
                         return CP_ERR_CUSP;
                     }
@@ -490,7 +517,7 @@ static int init_circles(struct toolpath *tp, const struct toolpath_cfg *cfg, uin
         }
         /* link sagitta along the bounding lines: compare nodes with midpoints */
         if (tp->n > 1u && cfg->link == TOOLPATH_LINK_AUTO) {
-            cp_real smax = circles_link_sag(tp, gsteps, aa, ba, ab, bb);
+            cp_real smax = circles_link_sag(tp, gsteps);
             if (smax > SAG_MARGIN * tol) {
                 cp_real want;
                 if (round == WALK_MAX_ROUNDS) {
@@ -539,6 +566,9 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     }
     tp->mode = cfg->mode;
     tp->output = cfg->output;
+    tp->labels = cfg->labels;
+    tp->span = cfg->span;
+    tp->lab_line = -1;
     tp->n = cfg->n;
     tp->u0 = cfg->u0;
     tp->u1 = cfg->u1;
@@ -598,6 +628,7 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
     }
     tp->k = k;
     tp->node = 0xFFFFFFFFu; /* no quadrature state yet: next() positions it */
+    tp->lab_line = -1;
     return CP_OK;
 }
 
@@ -677,7 +708,12 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
             quad_to(tp, a, back, &j);
         }
         canal_frame(&j, &f);
-        first_label(tp, line_u0(tp, jl), &al, &bl);
+        if (tp->lab_line != (int32_t)jl) {
+            first_label(tp, line_u0(tp, jl), &tp->lab_a, &tp->lab_b);
+            tp->lab_line = (int32_t)jl;
+        }
+        al = tp->lab_a;
+        bl = tp->lab_b;
         emit_point(tp, &f, al + tp->lam * bl, bl, &cp);
         return finish(tp, &cp, t_at(tp, a, tp->hp), (int)jl, i, pt);
     }
@@ -713,10 +749,9 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         a = c * (tp->link + 1u) * m2;
         quad_to(tp, a, 0, &j);
         canal_frame(&j, &f);
-        first_label(tp, tp->u0, &aa, &ba);
-        first_label(tp, tp->u1, &ab, &bb);
-        label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
-                      (cp_real)i / (cp_real)tp->steps, &hh, &b2);
+        bound_label(tp, tp->u0, &f, tp->lam, &aa, &ba);
+        bound_label(tp, tp->u1, &f, tp->lam, &ab, &bb);
+        label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &hh, &b2);
         emit_point(tp, &f, hh, b2, &cp);
         return finish(tp, &cp, t_at(tp, a, tp->hp), (int)c, i, pt);
     }
@@ -725,8 +760,8 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         a = (c * (tp->link + 1u) + kk) * m2;
         quad_to(tp, a, 0, &j);
         canal_frame(&j, &f);
-        first_label(tp, back ? tp->u0 : tp->u1, &aa, &ba);
-        emit_point(tp, &f, aa + tp->lam * ba, ba, &cp);
+        bound_label(tp, back ? tp->u0 : tp->u1, &f, tp->lam, &aa, &ba);
+        emit_point(tp, &f, aa, ba, &cp);
         return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
     }
 }

@@ -38,6 +38,19 @@ enum toolpath_mode {
     TOOLPATH_CIRCLES = 1 /* family-1 characteristic circles, linked along lines */
 };
 
+/* How u0, u1 label the family-2 lines. */
+enum toolpath_labels {
+    TOOLPATH_LABEL_ANGLE = 0, /* contact-frame start angle on the first circle, radians, |u| <= pi */
+    TOOLPATH_LABEL_LAMBDA = 1 /* w = lambda(t0) = q0 cot(u0/2), mm-free, |w| <= 1e4 (C is w = inf) */
+};
+
+/* What bounds the circles of TOOLPATH_CIRCLES. */
+enum toolpath_span {
+    TOOLPATH_SPAN_LINES = 0, /* the family-2 lines that start at u0 and u1: the same patch as LINES */
+    TOOLPATH_SPAN_ANGLE = 1  /* the fixed contact-frame angles u0..u1 on every circle; links run
+                                along u = const (labels must be ANGLE) */
+};
+
 /* Output of each point. */
 enum toolpath_output {
     TOOLPATH_OUT_SURFACE = 0, /* the surface point m (no tool) */
@@ -49,9 +62,11 @@ struct toolpath_cfg {
     struct canal_cfg surf; /* the surface (validated by canal_init) */
     uint8_t mode;          /* enum toolpath_mode */
     uint8_t output;        /* enum toolpath_output */
+    uint8_t labels;        /* enum toolpath_labels (default ANGLE) */
+    uint8_t span;          /* enum toolpath_span, CIRCLES only (default LINES) */
     uint16_t n;            /* lines (LINES) or circles (CIRCLES), 1..CP_MAX_LINES */
-    cp_real u0, u1;        /* bounding line start angles on the first circle, radians,
-                              |u| <= pi; u0 == u1 allowed only with n == 1 */
+    cp_real u0, u1;        /* bounding lines: start angles on the first circle, radians, |u| <= pi
+                              (or lambda labels, see labels); u0 == u1 allowed only with n == 1 */
     uint16_t steps;        /* output steps per line/circle (points = steps + 1), 1..CP_MAX_STEPS;
                               0 = derive from tol */
     uint16_t substeps;     /* Simpson panels per output step, 1..CP_MAX_SUBSTEPS; 0 = derive from
@@ -79,8 +94,10 @@ struct toolpath_pt {
 
 struct toolpath {
     struct canal surf;
-    uint8_t mode, output;
+    uint8_t mode, output, labels, span;
     uint16_t n, steps, substeps, link;
+    int32_t lab_line;   /* line whose label is cached in lab_a, lab_b (-1: none) */
+    cp_real lab_a, lab_b;
     cp_real u0, u1, tool_r;
     cp_real hp;         /* half-panel width in t: output/node step = 2 substeps hp */
     cp_real q0;         /* q at t0 (labels) */

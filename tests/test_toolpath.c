@@ -241,3 +241,63 @@ int test_toolpath_deterministic(void)
     CHECK_EQ_INT(toolpath_seek(&b, toolpath_count(&b) + 1u), CP_ERR_RANGE);
     return 0;
 }
+
+int test_toolpath_labels_span(void)
+{
+    /* lambda labels: the line w is the line that starts at u0 = 2 atan2(q0, w) */
+    struct toolpath_cfg cfg;
+    static struct toolpath ta, tb;
+    struct toolpath_pt pa, pb;
+    double worst = 0.0;
+    uint32_t k;
+    paper_cfg(&cfg);
+    cfg.n = 2;
+    cfg.steps = 100;
+    cfg.tol = CP_R(0.0);
+    cfg.link = 0;
+    cfg.labels = TOOLPATH_LABEL_LAMBDA;
+    cfg.u0 = CP_R(-6.0);
+    cfg.u1 = CP_R(12.0);
+    CHECK_EQ_INT(toolpath_init(&ta, &cfg), CP_OK);
+    cfg.labels = TOOLPATH_LABEL_ANGLE;
+    cfg.u0 = (cp_real)(2.0 * atan2(1.0, -6.0)) - CP_TWO_PI; /* q0 = 1 at t = 0; fold to (-pi, pi] */
+    cfg.u1 = (cp_real)(2.0 * atan2(1.0, 12.0));
+    CHECK_EQ_INT(toolpath_init(&tb, &cfg), CP_OK);
+    for (k = 0; k < toolpath_count(&ta); k++) {
+        CHECK_EQ_INT(toolpath_next(&ta, &pa), CP_OK);
+        CHECK_EQ_INT(toolpath_next(&tb, &pb), CP_OK);
+        worst = fmax(worst, fabs((double)pa.p.x - (double)pb.p.x) + fabs((double)pa.p.y - (double)pb.p.y) +
+                                fabs((double)pa.p.z - (double)pb.p.z));
+    }
+    TEST_NOTE("lambda vs angle labels: %.2g mm\n", worst);
+    CHECK(worst < 2e-5);
+    /* span ANGLE: every circle starts at contact angle u0 and ends at u1 */
+    paper_cfg(&cfg);
+    cfg.mode = TOOLPATH_CIRCLES;
+    cfg.span = TOOLPATH_SPAN_ANGLE;
+    cfg.n = 40;
+    cfg.u0 = CP_R(-0.4);
+    cfg.u1 = CP_R(0.2);
+    CHECK_EQ_INT(toolpath_init(&ta, &cfg), CP_OK);
+    worst = 0.0;
+    while (toolpath_next(&ta, &pa) == CP_OK) {
+        if (pa.line >= 0 && (pa.index == 0u || pa.index == ta.steps)) {
+            struct canal_jet j;
+            struct canal_frame f;
+            struct canal_point m;
+            cp_real u = pa.index == 0u ? cfg.u0 : cfg.u1;
+            canal_jet(&ta.surf, pa.t, &j);
+            canal_frame(&j, &f);
+            canal_point(&f, (cp_real)sqrt((double)f.q2) * (cp_real)cos(0.5 * (double)u),
+                        (cp_real)sin(0.5 * (double)u), CP_R(0.0), &m);
+            worst = fmax(worst, fabs((double)pa.p.x - (double)m.m.x) + fabs((double)pa.p.y - (double)m.m.y) +
+                                    fabs((double)pa.p.z - (double)m.m.z));
+        }
+    }
+    TEST_NOTE("span ANGLE circle ends: %.2g mm\n", worst);
+    CHECK(worst < 2e-5);
+    /* span ANGLE needs CIRCLES mode and angle labels */
+    cfg.mode = TOOLPATH_LINES;
+    CHECK_EQ_INT(toolpath_init(&ta, &cfg), CP_ERR_INVAL);
+    return 0;
+}
