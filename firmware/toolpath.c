@@ -24,6 +24,7 @@
 #define RICH_COARSE 64u /* Richardson estimate: coarse panel count over [t0, t1] */
 #define WALK_MAX_ROUNDS 4 /* step-count refinements from the measured sagitta */
 #define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
+#define LINK_PROBES 16u /* regularity probes along each link arc */
 #define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
 
 struct quad {
@@ -298,7 +299,7 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
     struct canal_jet j;
     struct canal_frame f;
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
-    uint32_t end, jl, segs, worst = 1u;
+    uint32_t end, jl, segs, worst = 1u, k;
     if (tp->n <= 1u) {
         tp->link = 0u;
         return CP_OK;
@@ -316,6 +317,15 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
             rad = (f.r - off) / cp_sqrt(f.q2);
             segs = arc_segments(rad, label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb), tol);
             worst = segs > worst ? segs : worst;
+            /* the link arc itself must stay on the regular sheet */
+            for (k = 1; k < LINK_PROBES; k++) {
+                cp_real hh, b2;
+                label_between(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
+                              (cp_real)k / (cp_real)LINK_PROBES, &hh, &b2);
+                if (!regular(tp, &f, hh, b2)) {
+                    return CP_ERR_CUSP;
+                }
+            }
         }
     }
     if (worst - 1u > CP_MAX_LINK) {
@@ -403,12 +413,12 @@ static int init_lines(struct toolpath *tp, const struct toolpath_cfg *cfg, uint3
             steps = (uint32_t)cp_ceil(want);
         }
     }
-    if (cfg->link == TOOLPATH_LINK_AUTO) {
-        err = lines_link(tp, tol);
-        if (err != CP_OK) {
-            return err;
-        }
-    } else {
+    /* link arcs: regularity always, count from the tolerance unless given */
+    err = lines_link(tp, tol);
+    if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != TOOLPATH_LINK_AUTO)) {
+        return err;
+    }
+    if (cfg->link != TOOLPATH_LINK_AUTO) {
         tp->link = tp->n > 1u ? cfg->link : 0u;
     }
     return CP_OK;
