@@ -1,11 +1,17 @@
-/* proto.c - the line protocol engine (grbl-style ok / error:<code> replies).
+/* proto.c - the protocol engine: command lines, replies and the toolpath stream.
  * SPDX-License-Identifier: MIT
  */
 #include "proto.h"
 #include "fmt.h"
+#include "parse.h"
 
 #define PROTO_LF_OVERFLOW 0x01u /* the line exceeded CP_LINE_MAX-1 bytes */
 #define PROTO_LF_BADCHAR 0x02u  /* the line held a byte outside 0x20..0x7E */
+
+#define RT_STATUS '?'
+#define RT_HOLD '!'
+#define RT_RESUME '~'
+#define RT_ABORT 0x18
 
 const char *cp_status_text(int code)
 {
@@ -36,22 +42,58 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     p->tx_pos = 0;
     p->lines_seen = 0;
     p->err = CP_OK;
+    job_init(&p->job);
+    p->state = PROTO_IDLE;
+    p->fmt = JOB_GCODE;
+    p->ring_head = 0;
+    p->ring_n = 0;
+    p->inflight = 0;
+    p->stale = 0;
+    p->retries = 0;
+    p->start_k = 0;
+    p->next = 0;
+    p->acked = 0;
+    p->end = 0;
+    p->t_last = 0;
+    p->pend_len = 0;
+    p->pend_idx = 0;
+    p->tp.count = 0;
+    frame_rx_init(&p->frx);
     return CP_OK;
 }
 
-/* Append text to the reply buffer. The caller has checked that a whole reply
- * burst (PROTO_REPLY_MAX) fits, so this cannot fail; a failure would only
- * truncate a reply, never overrun memory. */
+/*---------------------------------------------------------------------------
+ * Output staging. Callers check tx_room() >= PROTO_REPLY_MAX before a burst,
+ * so the appends below cannot fail; a failure would truncate, never overrun.
+ *-------------------------------------------------------------------------*/
+static size_t tx_room(struct proto *p)
+{
+    if (p->tx_pos > 0u) { /* compact the unsent tail (and a pending line) to the front */
+        uint16_t i, k = (uint16_t)(p->tx_len - p->tx_pos);
+        uint16_t all = (uint16_t)(k + p->pend_len);
+        for (i = 0; i < all; i++) {
+            p->tx[i] = p->tx[p->tx_pos + i];
+        }
+        p->tx_len = k;
+        p->tx_pos = 0;
+    }
+    return (size_t)(CP_TX_BUF - p->tx_len - p->pend_len);
+}
+
 static void tx_str(struct proto *p, const char *s)
 {
-    size_t pos = p->tx_len;
+    size_t pos;
+    p->pend_len = 0; /* text overwrites a pending (uncommitted) stream line */
+    pos = p->tx_len;
     (void)fmt_str((char *)p->tx, sizeof p->tx, &pos, s);
     p->tx_len = (uint16_t)pos;
 }
 
 static void tx_u32(struct proto *p, uint32_t v)
 {
-    size_t pos = p->tx_len;
+    size_t pos;
+    p->pend_len = 0;
+    pos = p->tx_len;
     (void)fmt_u32((char *)p->tx, sizeof p->tx, &pos, v);
     p->tx_len = (uint16_t)pos;
 }
@@ -85,29 +127,368 @@ static void reply_info(struct proto *p)
     tx_u32(p, CP_MAX_LINES);
     tx_str(p, ",link=");
     tx_u32(p, CP_MAX_LINK);
+    tx_str(p, ",window=");
+    tx_u32(p, PROTO_WINDOW);
     tx_str(p, "]\n");
 }
 
-/* Case-insensitive comparison of the line with an upper-case keyword. */
-static int line_is(const struct proto *p, const char *kw)
+/* "<Idle|P:k/m>" or "<Run|L:j|P:k/m>" (k = points sent, m = points of the run). */
+static void reply_report(struct proto *p)
+{
+    static const char *const names[3] = {"<Idle", "<Run", "<Hold"};
+    uint32_t sent = 0;
+    tx_str(p, names[p->state]);
+    if (p->state != PROTO_IDLE) {
+        uint32_t items = p->fmt == JOB_GCODE ? p->next : (p->next > 0u ? p->next - 1u : 0u);
+        uint32_t npts = p->end - (p->fmt == JOB_GCODE ? 1u : 2u);
+        sent = items > npts ? npts : items;
+        tx_str(p, "|P:");
+        tx_u32(p, p->start_k + sent);
+        tx_str(p, "/");
+        tx_u32(p, toolpath_count(&p->tp));
+    }
+    tx_str(p, ">\n");
+}
+
+/*---------------------------------------------------------------------------
+ * Run control
+ *-------------------------------------------------------------------------*/
+static void run_finish(struct proto *p, int status)
+{
+    if (p->fmt == JOB_FRAMES && status != CP_ST_OK) {
+        /* tell a binary host why the stream stopped, then the text reply */
+        uint8_t pl[5], buf[16];
+        int n;
+        p->pend_len = 0;
+        pl[0] = (uint8_t)status;
+        frame_put_u32(pl + 1, p->next > 0u ? p->next - 1u : 0u);
+        n = frame_encode((uint8_t)p->next, FRAME_END, pl, sizeof pl, buf, sizeof buf);
+        if (n > 0) {
+            size_t pos = p->tx_len;
+            int i;
+            for (i = 0; i < n && pos < sizeof p->tx; i++) {
+                p->tx[pos++] = buf[i];
+            }
+            p->tx_len = (uint16_t)pos;
+        }
+    }
+    reply_status(p, status);
+    p->state = PROTO_IDLE;
+}
+
+static int run_start(struct proto *p, uint32_t first)
+{
+    int err;
+    uint32_t npts;
+    if ((p->job.have & JOB_HAVE_ALL) != JOB_HAVE_ALL) {
+        return CP_ST_NO_JOB;
+    }
+    err = toolpath_init(&p->tp, &p->job.cfg);
+    if (err != CP_OK) {
+        p->tp.count = 0;
+        return job_status_of(err);
+    }
+    if (first >= toolpath_count(&p->tp)) {
+        return CP_ST_RESUME_RANGE;
+    }
+    if (first > 0u && toolpath_seek(&p->tp, first) != CP_OK) {
+        return CP_ST_RESUME_RANGE;
+    }
+    npts = toolpath_count(&p->tp) - first;
+    p->fmt = p->job.format;
+    p->start_k = first;
+    p->next = 0;
+    p->acked = 0;
+    p->end = p->fmt == JOB_GCODE ? npts + 1u : npts + 2u;
+    p->ring_head = 0;
+    p->ring_n = 0;
+    p->inflight = 0;
+    p->stale = 0;
+    p->retries = 0;
+    p->pend_len = 0;
+    p->t_last = hal_uart_now_ms(p->uart);
+    frame_rx_init(&p->frx);
+    p->state = PROTO_RUN;
+    return CP_ST_OK;
+}
+
+/* Position the iterator on point k and fetch it. */
+static int point_at(struct proto *p, uint32_t k, struct toolpath_pt *pt)
+{
+    if (p->tp.k != k && toolpath_seek(&p->tp, k) != CP_OK) {
+        return CP_ERR_RANGE;
+    }
+    return toolpath_next(&p->tp, pt);
+}
+
+/* Round to an integer count of `scale` units: deterministic (floor is exact). */
+static int32_t quantize(cp_real v, cp_real scale)
+{
+    return (int32_t)cp_floor(v * scale + CP_R(0.5));
+}
+
+/* Build GCODE stream line `idx` (0 = preamble) into out; returns its length or < 0. */
+static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
+{
+    size_t pos = 0;
+    int err = CP_OK;
+    if (p->job.checksum) {
+        err |= fmt_str(out, cap, &pos, "N");
+        err |= fmt_u32(out, cap, &pos, idx + 1u);
+        err |= fmt_str(out, cap, &pos, " ");
+    }
+    if (idx == 0u) {
+        err |= fmt_str(out, cap, &pos, "G21 G90 G17");
+    } else {
+        struct toolpath_pt pt;
+        int e = point_at(p, p->start_k + idx - 1u, &pt);
+        if (e != CP_OK) {
+            return e;
+        }
+        err |= fmt_str(out, cap, &pos, "G1 X");
+        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.x, CP_R(10000.0)), 4u);
+        err |= fmt_str(out, cap, &pos, " Y");
+        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.y, CP_R(10000.0)), 4u);
+        err |= fmt_str(out, cap, &pos, " Z");
+        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.z, CP_R(10000.0)), 4u);
+        if (p->job.feed > CP_R(0.0)) {
+            err |= fmt_str(out, cap, &pos, " F");
+            err |= fmt_fixed(out, cap, &pos, quantize(p->job.feed, CP_R(10.0)), 1u);
+        }
+    }
+    if (p->job.checksum) {
+        uint8_t cs = 0;
+        size_t i;
+        for (i = 0; i < pos; i++) {
+            cs ^= (uint8_t)out[i];
+        }
+        err |= fmt_str(out, cap, &pos, "*");
+        err |= fmt_u32(out, cap, &pos, cs);
+    }
+    err |= fmt_str(out, cap, &pos, "\n");
+    return err != CP_OK ? CP_ERR_FULL : (int)pos;
+}
+
+/* Build FRAMES stream item `idx` into out; returns its length or < 0. */
+static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
+{
+    uint8_t pl[FRAME_POINT_PAYLOAD];
+    uint32_t npts = p->end - 2u;
+    if (idx == 0u) {
+        frame_put_u32(pl, toolpath_count(&p->tp));
+        frame_put_u32(pl + 4, p->start_k);
+        frame_put_u16(pl + 8, p->tp.n);
+        frame_put_u16(pl + 10, p->tp.steps);
+        frame_put_u16(pl + 12, p->tp.link);
+        return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 14u, out, cap);
+    }
+    if (idx <= npts) {
+        struct toolpath_pt pt;
+        uint32_t k = p->start_k + idx - 1u;
+        int e = point_at(p, k, &pt);
+        if (e != CP_OK) {
+            return e;
+        }
+        frame_put_u32(pl, k);
+        frame_put_u32(pl + 4, (uint32_t)quantize(pt.p.x, CP_R(10000.0)));
+        frame_put_u32(pl + 8, (uint32_t)quantize(pt.p.y, CP_R(10000.0)));
+        frame_put_u32(pl + 12, (uint32_t)quantize(pt.p.z, CP_R(10000.0)));
+        frame_put_u16(pl + 16, (uint16_t)(int16_t)quantize(pt.n.x, CP_R(32767.0)));
+        frame_put_u16(pl + 18, (uint16_t)(int16_t)quantize(pt.n.y, CP_R(32767.0)));
+        frame_put_u16(pl + 20, (uint16_t)(int16_t)quantize(pt.n.z, CP_R(32767.0)));
+        frame_put_u16(pl + 22, (uint16_t)pt.line);
+        frame_put_u16(pl + 24, pt.index);
+        return frame_encode((uint8_t)idx, FRAME_POINT, pl, FRAME_POINT_PAYLOAD, out, cap);
+    }
+    pl[0] = CP_ST_OK;
+    frame_put_u32(pl + 1, npts);
+    return frame_encode((uint8_t)idx, FRAME_END, pl, 5u, out, cap);
+}
+
+/* Emit at most one stream item if flow control allows. Returns 1 if one was sent. */
+static int run_emit(struct proto *p)
+{
+    uint32_t now = hal_uart_now_ms(p->uart);
+    int n;
+    if (tx_room(p) + p->pend_len < PROTO_REPLY_MAX) {
+        return 0; /* every path below may append a whole burst */
+    }
+    if (p->fmt == JOB_GCODE) {
+        if (p->next >= p->end) {
+            if (p->ring_n == 0u) {
+                run_finish(p, CP_ST_OK);
+                return 1;
+            }
+        } else if (p->state == PROTO_RUN && p->ring_n < PROTO_RING) {
+            /* the line is built once into the tx tail (uncommitted) and waits there
+             * until the machine's RX buffer has room for it */
+            if (p->pend_len == 0u || p->pend_idx != p->next) {
+                n = gcode_line(p, p->next, (char *)p->tx + p->tx_len, PROTO_REPLY_MAX);
+                if (n < 0) {
+                    run_finish(p, CP_ST_NUMERIC);
+                    return 1;
+                }
+                p->pend_len = (uint8_t)n;
+                p->pend_idx = p->next;
+            }
+            n = p->pend_len;
+            if ((uint32_t)p->inflight + (uint32_t)n <= p->job.rxbuf) {
+                p->pend_len = 0;
+                p->tx_len = (uint16_t)(p->tx_len + n);
+                p->ring[(p->ring_head + p->ring_n) % PROTO_RING] = (uint8_t)n;
+                p->ring_n++;
+                p->inflight = (uint16_t)(p->inflight + n);
+                if (p->ring_n == 1u) {
+                    p->t_last = now; /* the answer clock starts with the first line in flight */
+                }
+                p->next++;
+                return 1;
+            }
+        }
+        if (p->ring_n > 0u && (uint32_t)(now - p->t_last) > PROTO_PEER_TIMEOUT_MS) {
+            run_finish(p, CP_ST_TIMEOUT);
+            return 1;
+        }
+        return 0;
+    }
+    /* FRAMES */
+    if (p->acked >= p->end) {
+        run_finish(p, CP_ST_OK);
+        return 1;
+    }
+    if (p->state == PROTO_RUN && p->acked < p->next && (uint32_t)(now - p->t_last) > PROTO_RTO_MS) {
+        /* go-back-N: resend everything from the oldest unacknowledged frame */
+        if (++p->retries > PROTO_MAX_RETRIES) {
+            run_finish(p, CP_ST_LINK_ERROR);
+            return 1;
+        }
+        p->next = p->acked;
+        p->t_last = now;
+    }
+    if (p->state == PROTO_RUN && p->next < p->end && p->next - p->acked < PROTO_WINDOW) {
+        n = frames_item(p, p->next, p->tx + p->tx_len, FRAME_MAX);
+        if (n < 0) {
+            run_finish(p, CP_ST_NUMERIC);
+            return 1;
+        }
+        if (p->next == p->acked) {
+            p->t_last = now; /* the retransmission clock runs from the oldest frame */
+        }
+        p->tx_len = (uint16_t)(p->tx_len + n);
+        p->next++;
+        return 1;
+    }
+    return 0;
+}
+
+/* Full sequence number of a received 8-bit seq, in [acked, next]; or -1. */
+static int64_t frame_full_seq(const struct proto *p, uint8_t s)
+{
+    uint32_t full = p->acked + (uint8_t)(s - (uint8_t)p->acked);
+    return full <= p->next ? (int64_t)full : -1;
+}
+
+static void frames_rx(struct proto *p, const uint8_t *f)
+{
+    int64_t full;
+    uint32_t now = hal_uart_now_ms(p->uart);
+    switch (f[2]) {
+    case FRAME_ACK:
+        full = frame_full_seq(p, f[1]);
+        if (full > (int64_t)p->acked) {
+            p->acked = (uint32_t)full;
+            p->t_last = now;
+            p->retries = 0;
+        }
+        break;
+    case FRAME_NAK:
+        full = frame_full_seq(p, f[1]);
+        if (full >= (int64_t)p->acked && full < (int64_t)p->next) {
+            p->acked = (uint32_t)full; /* everything before it arrived */
+            p->next = (uint32_t)full;
+            p->t_last = now;
+        }
+        break;
+    case FRAME_ABORT:
+        run_finish(p, CP_ST_ABORTED);
+        break;
+    case FRAME_HOLD:
+        p->state = PROTO_HOLD;
+        break;
+    case FRAME_GO:
+        p->state = PROTO_RUN;
+        p->t_last = now;
+        break;
+    default:
+        break; /* STATUS and unknown types: ignored in this version */
+    }
+}
+
+/*---------------------------------------------------------------------------
+ * Lines
+ *-------------------------------------------------------------------------*/
+static int starts_with(const struct proto *p, const char *kw)
 {
     uint16_t i;
-    for (i = 0; i < p->line_len; i++) {
-        char c = p->line[i];
-        if (c >= 'a' && c <= 'z') {
-            c = (char)(c - 'a' + 'A');
-        }
-        if (kw[i] == '\0' || kw[i] != c) {
+    for (i = 0; kw[i] != '\0'; i++) {
+        if (i >= p->line_len || p->line[i] != kw[i]) {
             return 0;
         }
     }
-    return kw[i] == '\0';
+    return 1;
 }
 
-/* Execute one complete line and queue its reply. */
+/* A line from the machine during a GCODE run (or a stray one when idle).
+ * Returns 1 if it was a machine response (consumed), else 0. */
+static int machine_line(struct proto *p)
+{
+    if (starts_with(p, "ok") && p->line_len == 2u) {
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->ring_n > 0u) {
+            p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
+            p->ring_head = (uint8_t)((p->ring_head + 1u) % PROTO_RING);
+            p->ring_n--;
+            p->acked++;
+            if (p->stale > 0u) {
+                p->stale--;
+            }
+            p->t_last = hal_uart_now_ms(p->uart);
+        }
+        return 1;
+    }
+    if (starts_with(p, "error:") || starts_with(p, "ALARM:") || starts_with(p, "Error:")) {
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && !p->job.checksum) {
+            run_finish(p, CP_ST_PEER_ERROR);
+        }
+        /* with checksums a machine error precedes its Resend: request */
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum &&
+            starts_with(p, "ALARM:")) {
+            run_finish(p, CP_ST_PEER_ERROR);
+        }
+        return 1;
+    }
+    if (starts_with(p, "Resend:") || starts_with(p, "rs ")) {
+        uint16_t a = starts_with(p, "rs ") ? 3u : 7u;
+        uint32_t n;
+        while (a < p->line_len && p->line[a] == ' ') {
+            a++;
+        }
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && p->stale == 0u &&
+            parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
+            n >= 1u && n - 1u < p->next) {
+            /* regenerate from line n; the oks of the lines already in flight are
+             * still due (one per line), and their Resend: requests are stale */
+            p->next = n - 1u;
+            p->stale = p->ring_n;
+        }
+        return 1;
+    }
+    return 0;
+}
+
 static void exec_line(struct proto *p)
 {
     uint16_t a = 0, b = p->line_len;
+    int st;
     p->lines_seen++;
     if (p->line_flags & PROTO_LF_OVERFLOW) {
         reply_status(p, CP_ST_LINE_TOO_LONG);
@@ -117,11 +498,11 @@ static void exec_line(struct proto *p)
         reply_status(p, CP_ST_BAD_CHAR);
         return;
     }
-    /* trim spaces and tabs at both ends */
-    while (a < b && (p->line[a] == ' ' || p->line[a] == '\t')) {
+    /* trim spaces at both ends */
+    while (a < b && p->line[a] == ' ') {
         a++;
     }
-    while (b > a && (p->line[b - 1u] == ' ' || p->line[b - 1u] == '\t')) {
+    while (b > a && p->line[b - 1u] == ' ') {
         b--;
     }
     if (a > 0u) {
@@ -131,30 +512,108 @@ static void exec_line(struct proto *p)
         }
     }
     p->line_len = (uint16_t)(b - a);
+    if (machine_line(p)) {
+        return;
+    }
     if (p->line_len == 0u) {
-        reply_status(p, CP_ST_OK);
-    } else if (line_is(p, "$I") || line_is(p, "HELLO")) {
+        if (p->state == PROTO_IDLE) {
+            reply_status(p, CP_ST_OK); /* sync, as grbl */
+        }
+        return;
+    }
+    if (parse_is(p->line, p->line_len, "$I") || parse_is(p->line, p->line_len, "HELLO")) {
         reply_info(p);
         reply_status(p, CP_ST_OK);
-    } else {
-        reply_status(p, CP_ST_UNKNOWN_CMD);
+        return;
+    }
+    if (p->state != PROTO_IDLE) {
+        reply_status(p, CP_ST_BUSY);
+        return;
+    }
+    if (parse_is(p->line, p->line_len, "RUN")) {
+        st = run_start(p, 0u);
+        if (st != CP_ST_OK) {
+            reply_status(p, st);
+        }
+        return;
+    }
+    {
+        uint16_t ts[3], tl[3];
+        unsigned nt = parse_split(p->line, p->line_len, ts, tl, 2u);
+        if (nt >= 1u && parse_is(p->line + ts[0], tl[0], "RESUME")) {
+            uint32_t k = 0;
+            if (nt != 2u) {
+                reply_status(p, CP_ST_BAD_ARITY);
+                return;
+            }
+            st = parse_uint(p->line + ts[1], tl[1], 0xFFFFFFFFu, &k);
+            if (st == CP_ST_OUT_OF_RANGE) {
+                st = CP_ST_RESUME_RANGE;
+            }
+            if (st == CP_ST_OK) {
+                st = run_start(p, k);
+            }
+            if (st != CP_ST_OK) {
+                reply_status(p, st);
+            }
+            return;
+        }
+    }
+    st = job_command(&p->job, p->line, p->line_len);
+    reply_status(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
+}
+
+/* Real-time bytes act at once, outside the line assembly (grbl). */
+static int realtime(struct proto *p, uint8_t c)
+{
+    switch (c) {
+    case RT_STATUS:
+        reply_report(p);
+        return 1;
+    case RT_HOLD:
+        if (p->state == PROTO_RUN) {
+            p->state = PROTO_HOLD;
+        }
+        return 1;
+    case RT_RESUME:
+        if (p->state == PROTO_HOLD) {
+            p->state = PROTO_RUN;
+            p->t_last = hal_uart_now_ms(p->uart);
+        }
+        return 1;
+    case RT_ABORT:
+        p->line_len = 0;
+        p->line_flags = 0;
+        if (p->state != PROTO_IDLE) {
+            run_finish(p, CP_ST_ABORTED);
+        }
+        return 1;
+    default:
+        return 0;
     }
 }
 
-/* Feed one received byte to the line assembler. Returns 1 when a line was
- * completed and executed (a reply was queued), else 0. */
-static int feed(struct proto *p, uint8_t c)
+static void feed(struct proto *p, uint8_t c)
 {
+    if (p->state != PROTO_IDLE && p->fmt == JOB_FRAMES) {
+        if (frame_rx_feed(&p->frx, c)) {
+            frames_rx(p, p->frx.buf);
+        }
+        return;
+    }
+    if (realtime(p, c)) {
+        return;
+    }
     if (c == '\n' || c == '\r') {
         int skip = (c == '\n' && p->last_cr);
         p->last_cr = (uint8_t)(c == '\r');
         if (skip) {
-            return 0;
+            return;
         }
         exec_line(p);
         p->line_len = 0;
         p->line_flags = 0;
-        return 1;
+        return;
     }
     p->last_cr = 0;
     if (c == '\t') {
@@ -162,14 +621,13 @@ static int feed(struct proto *p, uint8_t c)
     }
     if (c < 0x20u || c > 0x7Eu) {
         p->line_flags |= PROTO_LF_BADCHAR;
-        return 0;
+        return;
     }
     if (p->line_len >= CP_LINE_MAX - 1) {
         p->line_flags |= PROTO_LF_OVERFLOW;
-        return 0;
+        return;
     }
     p->line[p->line_len++] = (char)c;
-    return 0;
 }
 
 int proto_poll(struct proto *p)
@@ -179,7 +637,7 @@ int proto_poll(struct proto *p)
     if (p->err != CP_OK) {
         return p->err;
     }
-    /* 1. flush replies (non-blocking, partial writes are normal) */
+    /* 1. flush (non-blocking, partial writes are normal) */
     if (p->tx_pos < p->tx_len) {
         n = hal_uart_write(p->uart, p->tx + p->tx_pos, (size_t)(p->tx_len - p->tx_pos));
         if (n < 0) {
@@ -206,26 +664,13 @@ int proto_poll(struct proto *p)
     }
     /* 3. consume bytes while a whole reply burst still fits (back-pressure:
      *    unread bytes stay in the HAL/kernel buffer, nothing is dropped) */
-    while (p->rx_pos < p->rx_len) { /* bounded by sizeof rx */
-        if (p->tx_len + PROTO_REPLY_MAX > CP_TX_BUF) {
-            if (p->tx_pos == 0u) {
-                break;
-            }
-            /* compact the unsent tail to the front */
-            {
-                uint16_t i, k = (uint16_t)(p->tx_len - p->tx_pos);
-                for (i = 0; i < k; i++) {
-                    p->tx[i] = p->tx[p->tx_pos + i];
-                }
-                p->tx_len = k;
-                p->tx_pos = 0;
-            }
-            if (p->tx_len + PROTO_REPLY_MAX > CP_TX_BUF) {
-                break;
-            }
-        }
-        (void)feed(p, p->rx[p->rx_pos++]);
+    while (p->rx_pos < p->rx_len && tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
+        feed(p, p->rx[p->rx_pos++]);
         moved = 1;
+    }
+    /* 4. one stream item */
+    if (p->state != PROTO_IDLE) {
+        moved |= run_emit(p);
     }
     return moved;
 }

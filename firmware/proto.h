@@ -1,34 +1,73 @@
-/* proto.h - the line protocol engine: commands in, replies out, over one hal_uart.
+/* proto.h - the protocol engine: commands in, replies and the toolpath stream out,
+ * over one hal_uart. The full wire description is docs/PROTOCOL.md.
  * SPDX-License-Identifier: MIT
  *
  * grbl conventions: ASCII lines ending in '\n' or '\r' ("\r\n" counts once);
- * every line is answered "ok" or "error:<code> <text>" (codes: cp_status.def).
+ * every command line is answered "ok" or "error:<code> <text>" (cp_status.def).
  * The firmware never transmits before the host has spoken (no boot banner):
  * bytes written to a pty or QEMU UART before the host attaches are lost.
  *
- * Commands in this version:
- *   $I | HELLO   -> "[VER:canalpath <fw> proto <n>]"
- *                   "[OPT:real=<float|double>,line=<CP_LINE_MAX>,tx=<CP_TX_BUF>,
- *                          steps=<CP_MAX_STEPS>,sub=<CP_MAX_SUBSTEPS>,lines=<CP_MAX_LINES>,
- *                          link=<CP_MAX_LINK>]"  then "ok"
- *   (empty line) -> "ok" (sync, as grbl)
- *   anything else -> error:1 unknown command
- * Errors: a line longer than CP_LINE_MAX-1 bytes -> error:2 (after its newline);
- *         a byte outside 0x20..0x7E (other than CR/LF) -> error:8 for that line.
+ * Commands: $I | HELLO (version and limits), the job commands of job.h, RUN,
+ * RESUME k. Real-time bytes (outside FRAMES runs): '?' status report,
+ * '!' feed hold, '~' resume, 0x18 abort.
+ *
+ * RUN validates the job (toolpath_init) and streams it:
+ *   GCODE   "G21 G90 G17" then one "G1 X.. Y.. Z.. [F..]" per point, 4 decimals,
+ *           optionally "N<n> ... *<cs>" (CHECKSUM ON). The firmware is the sender: it
+ *           keeps the bytes of unacknowledged lines <= RXBUF (grbl character
+ *           counting) and consumes one "ok" per line from the machine; "error:..." or
+ *           "ALARM:..." from the machine stops the job (error:19); "Resend: n"
+ *           regenerates from line n (checksum mode). Then "ok" (or "error:N").
+ *   FRAMES  binary frames (frame.h): BEGIN, one POINT per point, END, with a window
+ *           of PROTO_WINDOW unacknowledged frames, go-back-N on NAK or timeout; the
+ *           host answers with ACK/NAK/ABORT/HOLD/GO frames. Then the text line "ok"
+ *           (or an END frame with the status and the text "error:N ...").
+ * Points are regenerated from the toolpath iterator on every retransmission: no
+ * history buffer, and a stream is byte-identical on every target.
  */
 #ifndef PROTO_H
 #define PROTO_H
 
-#include "cp_types.h"
 #include "cp_status.h"
+#include "cp_types.h"
+#include "frame.h"
 #include "hal_uart.h"
+#include "job.h"
 
-/* Worst-case length of one reply burst (the $I answer), bytes. */
+/* Worst-case length of one reply burst (the $I answer, or one stream line), bytes. */
 #define PROTO_REPLY_MAX 160
+
+/* FRAMES: unacknowledged frames in flight (1..64). */
+#ifndef PROTO_WINDOW
+#define PROTO_WINDOW 16u
+#endif
+/* FRAMES: retransmission timeout without ACK progress, ms. */
+#ifndef PROTO_RTO_MS
+#define PROTO_RTO_MS 250u
+#endif
+/* FRAMES: consecutive timeouts without progress before error:23. */
+#ifndef PROTO_MAX_RETRIES
+#define PROTO_MAX_RETRIES 40u
+#endif
+/* GCODE: the machine must answer a line within this time, ms (else error:22). */
+#ifndef PROTO_PEER_TIMEOUT_MS
+#define PROTO_PEER_TIMEOUT_MS 10000u
+#endif
+/* GCODE: lines in flight are tracked in a ring of this many entries. */
+#define PROTO_RING 64u
 
 #if CP_TX_BUF < PROTO_REPLY_MAX
 #error "CP_TX_BUF must hold one reply burst (PROTO_REPLY_MAX)"
 #endif
+#if PROTO_WINDOW < 1 || PROTO_WINDOW > 64
+#error "PROTO_WINDOW must be in 1..64"
+#endif
+
+enum proto_state {
+    PROTO_IDLE = 0,
+    PROTO_RUN = 1,
+    PROTO_HOLD = 2
+};
 
 struct proto_cfg {
     const struct hal_uart *uart; /* the serial port; must stay valid while in use */
@@ -42,20 +81,38 @@ struct proto {
     uint8_t last_cr;          /* previous byte was '\r' (so a following '\n' is skipped) */
     uint8_t rx[32];           /* bytes read from the HAL, not yet consumed */
     uint8_t rx_len, rx_pos;   /* valid bytes in rx[], next to consume */
-    uint8_t tx[CP_TX_BUF];    /* replies waiting for the HAL */
+    uint8_t tx[CP_TX_BUF];    /* bytes waiting for the HAL */
     uint16_t tx_len, tx_pos;  /* bytes in tx[], next to send */
     uint32_t lines_seen;      /* complete lines received (diagnostics) */
     int err;                  /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
+    /* job and run */
+    struct job job;           /* the job being assembled / run */
+    struct toolpath tp;       /* the validated toolpath of the current run */
+    uint8_t state;            /* enum proto_state */
+    uint8_t fmt;              /* enum job_format of the current run */
+    uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */
+    uint8_t ring[PROTO_RING];
+    uint16_t inflight;        /* GCODE: bytes of unacknowledged lines */
+    uint16_t stale;           /* GCODE: oks still due for lines sent before a Resend rewind */
+    uint8_t retries;          /* FRAMES: consecutive timeouts */
+    uint8_t pend_len;         /* GCODE: bytes of the built, uncommitted line at tx[tx_len] */
+    uint32_t pend_idx;        /* GCODE: stream index of that line */
+    uint32_t start_k;         /* first point of the run (RESUME k) */
+    uint32_t next;            /* next stream item to send (GCODE line / FRAMES frame index) */
+    uint32_t acked;           /* FRAMES: items below are acknowledged; GCODE: lines acked */
+    uint32_t end;             /* stream items of the run */
+    uint32_t t_last;          /* ms of the last progress from the peer */
+    struct frame_rx frx;      /* FRAMES: decoder of the host's frames */
 };
 
-/* Initialise p. Returns CP_OK, or CP_ERR_INVAL if cfg or cfg->uart (or one of
- * its three calls) is NULL. Nothing is transmitted. */
+/* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or
+ * cfg->uart (or one of its three calls) is NULL. Nothing is transmitted. */
 CP_MUST_CHECK int proto_init(struct proto *p, const struct proto_cfg *cfg);
 
-/* Do one bounded slice of work: flush pending replies, then consume received
- * bytes (at most sizeof rx per call) while a full reply burst fits in tx.
- * Returns > 0 if any byte moved, 0 if idle (the caller may sleep: WFI, poll()),
- * or CP_ERR_IO (sticky) once the HAL reports that the link is gone. */
+/* Do one bounded slice of work: flush pending output, consume received bytes (at
+ * most sizeof rx per call), emit at most one stream item. Returns > 0 if anything
+ * moved, 0 if idle (the caller may sleep: WFI, poll()), or CP_ERR_IO (sticky) once
+ * the HAL reports that the link is gone. */
 int proto_poll(struct proto *p);
 
 #endif /* PROTO_H */

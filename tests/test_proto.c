@@ -69,9 +69,9 @@ int test_proto_info(void)
     pump(&p);
     snprintf(want, sizeof want,
              "[VER:canalpath %s proto %d]\n[OPT:real=%s,line=%d,tx=%d,steps=%d,sub=%d,lines=%d,"
-             "link=%d]\nok\n",
+             "link=%d,window=%d]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
-             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK);
+             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)PROTO_WINDOW);
     i = strlen(want);
     CHECK(m.out_len == 2 * i + strlen("ok\nerror:1 unknown command\n"));
     CHECK(memcmp(m.out, want, i) == 0);

@@ -1,0 +1,346 @@
+/* job.c - the fillet job assembled from protocol commands.
+ * SPDX-License-Identifier: MIT
+ */
+#include "job.h"
+#include "parse.h"
+
+#define JOB_MAX_TOKENS 12u
+
+void job_init(struct job *j)
+{
+    unsigned i;
+    j->cfg.surf.curve = CANAL_LINE;
+    j->cfg.surf.radius = CANAL_R_CONST;
+    for (i = 0; i < 8u; i++) {
+        j->cfg.surf.cp[i] = CP_R(0.0);
+    }
+    for (i = 0; i < 4u; i++) {
+        j->cfg.surf.rp[i] = CP_R(0.0);
+    }
+    j->cfg.mode = TOOLPATH_LINES;
+    j->cfg.output = TOOLPATH_OUT_SURFACE;
+    j->cfg.labels = TOOLPATH_LABEL_ANGLE;
+    j->cfg.span = TOOLPATH_SPAN_LINES;
+    j->cfg.n = 1;
+    j->cfg.u0 = CP_R(0.0);
+    j->cfg.u1 = CP_R(0.0);
+    j->cfg.steps = 0;
+    j->cfg.substeps = 0;
+    j->cfg.link = TOOLPATH_LINK_AUTO;
+    j->cfg.tol = CP_R(0.001);
+    j->cfg.tool_r = CP_R(0.0);
+    j->feed = CP_R(0.0);
+    j->rxbuf = 128u;
+    j->have = 0;
+    j->format = JOB_GCODE;
+    j->checksum = 0;
+}
+
+int job_status_of(int err)
+{
+    switch (err) {
+    case CP_OK:
+        return CP_ST_OK;
+    case CP_ERR_NONFINITE:
+        return CP_ST_NONFINITE;
+    case CP_ERR_RANGE:
+    case CP_ERR_INVAL:
+        return CP_ST_OUT_OF_RANGE;
+    case CP_ERR_RADIUS:
+        return CP_ST_RADIUS;
+    case CP_ERR_DEGENERATE:
+        return CP_ST_DEGENERATE;
+    case CP_ERR_EMPTY:
+        return CP_ST_EMPTY;
+    case CP_ERR_TOO_MANY:
+        return CP_ST_TOO_MANY;
+    case CP_ERR_TOOL:
+        return CP_ST_TOOL;
+    case CP_ERR_CUSP:
+        return CP_ST_CUSP;
+    case CP_ERR_TOL:
+        return CP_ST_TOL;
+    default:
+        return CP_ST_NUMERIC;
+    }
+}
+
+/* Parse tokens first..first+n-1 as numbers into v[]. */
+static int numbers(const char *line, const uint16_t *st, const uint16_t *ln, unsigned first,
+                   unsigned n, cp_real *v)
+{
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        int s = parse_real(line + st[first + i], ln[first + i], &v[i]);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+    }
+    return CP_ST_OK;
+}
+
+static int cmd_curve(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
+                     unsigned nt)
+{
+    static const char *const names[4] = {"LINE", "ARC", "ELLIPSE", "BEZIER"};
+    static const uint8_t arity[4] = {4u, 5u, 6u, 8u};
+    cp_real v[8];
+    unsigned k, i;
+    int s;
+    if (nt < 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    for (k = 0; k < 4u; k++) {
+        if (parse_is(line + st[1], ln[1], names[k])) {
+            break;
+        }
+    }
+    if (k == 4u) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    if (nt != 2u + arity[k]) {
+        return CP_ST_BAD_ARITY;
+    }
+    s = numbers(line, st, ln, 2u, arity[k], v);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    if (k == CANAL_ARC) {
+        v[3] *= CP_DEG2RAD;
+        v[4] *= CP_DEG2RAD;
+    } else if (k == CANAL_ELLIPSE) {
+        v[4] *= CP_DEG2RAD;
+        v[5] *= CP_DEG2RAD;
+    }
+    j->cfg.surf.curve = (uint8_t)k;
+    for (i = 0; i < 8u; i++) {
+        j->cfg.surf.cp[i] = i < arity[k] ? v[i] : CP_R(0.0);
+    }
+    j->have |= JOB_HAVE_CURVE;
+    return CP_ST_OK;
+}
+
+static int cmd_radius(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
+                      unsigned nt)
+{
+    static const char *const names[4] = {"CONST", "LINEAR", "COS", "CUBIC"};
+    cp_real v[4];
+    unsigned k, i;
+    int s;
+    if (nt < 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    for (k = 0; k < 4u; k++) {
+        if (parse_is(line + st[1], ln[1], names[k])) {
+            break;
+        }
+    }
+    if (k == 4u) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    if (nt != 2u + (k + 1u)) {
+        return CP_ST_BAD_ARITY;
+    }
+    s = numbers(line, st, ln, 2u, k + 1u, v);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    j->cfg.surf.radius = (uint8_t)k;
+    for (i = 0; i < 4u; i++) {
+        j->cfg.surf.rp[i] = i <= k ? v[i] : CP_R(0.0);
+    }
+    j->have |= JOB_HAVE_RADIUS;
+    return CP_ST_OK;
+}
+
+static int cmd_raster(struct job *j, int circles, const char *line, const uint16_t *st,
+                      const uint16_t *ln, unsigned nt)
+{
+    uint32_t n;
+    cp_real v[2];
+    int s, patch = 0;
+    if (circles && nt == 5u) {
+        if (!parse_is(line + st[4], ln[4], "PATCH")) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        patch = 1;
+    } else if (nt != 4u) {
+        return CP_ST_BAD_ARITY;
+    }
+    s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &n);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    s = numbers(line, st, ln, 2u, 2u, v);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    if (n > CP_MAX_LINES) {
+        return CP_ST_TOO_MANY;
+    }
+    if (n == 0u || cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0) ||
+        (v[0] == v[1] && n > 1u)) {
+        return CP_ST_OUT_OF_RANGE;
+    }
+    j->cfg.mode = circles ? TOOLPATH_CIRCLES : TOOLPATH_LINES;
+    j->cfg.span = (circles && !patch) ? TOOLPATH_SPAN_ANGLE : TOOLPATH_SPAN_LINES;
+    j->cfg.n = (uint16_t)n;
+    j->cfg.u0 = v[0] * CP_DEG2RAD;
+    j->cfg.u1 = v[1] * CP_DEG2RAD;
+    j->have |= JOB_HAVE_RASTER;
+    return CP_ST_OK;
+}
+
+int job_command(struct job *j, const char *line, size_t len)
+{
+    uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
+    unsigned nt = parse_split(line, len, st, ln, JOB_MAX_TOKENS);
+    const char *w0 = line + (nt > 0u ? st[0] : 0u);
+    size_t l0 = nt > 0u ? ln[0] : 0u;
+    cp_real v;
+    uint32_t u;
+    int s;
+    if (nt == 0u) {
+        return JOB_NOT_MINE;
+    }
+    if (parse_is(w0, l0, "CURVE")) {
+        return nt > JOB_MAX_TOKENS ? CP_ST_BAD_ARITY : cmd_curve(j, line, st, ln, nt);
+    }
+    if (parse_is(w0, l0, "RADIUS")) {
+        return nt > JOB_MAX_TOKENS ? CP_ST_BAD_ARITY : cmd_radius(j, line, st, ln, nt);
+    }
+    if (nt > JOB_MAX_TOKENS) {
+        return parse_is(w0, l0, "TOOL") || parse_is(w0, l0, "LINES") ||
+                       parse_is(w0, l0, "CIRCLES") || parse_is(w0, l0, "STEPS") ||
+                       parse_is(w0, l0, "TOL") || parse_is(w0, l0, "FEED") ||
+                       parse_is(w0, l0, "FORMAT") || parse_is(w0, l0, "RXBUF") ||
+                       parse_is(w0, l0, "CHECKSUM")
+                   ? CP_ST_BAD_ARITY
+                   : JOB_NOT_MINE;
+    }
+    if (parse_is(w0, l0, "TOOL")) {
+        if (nt == 2u && parse_is(line + st[1], ln[1], "NONE")) {
+            j->cfg.output = TOOLPATH_OUT_SURFACE;
+            j->cfg.tool_r = CP_R(0.0);
+            return CP_ST_OK;
+        }
+        if (nt < 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        if (!parse_is(line + st[1], ln[1], "BALL")) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        if (nt != 3u && nt != 4u) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = parse_real(line + st[2], ln[2], &v);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        if (!(v > CP_R(0.0)) || v > CANAL_COORD_MAX) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        if (nt == 4u && !parse_is(line + st[3], ln[3], "TIP") &&
+            !parse_is(line + st[3], ln[3], "CENTRE") && !parse_is(line + st[3], ln[3], "CENTER")) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        j->cfg.output = (nt == 4u && !parse_is(line + st[3], ln[3], "TIP")) ? TOOLPATH_OUT_CENTRE
+                                                                            : TOOLPATH_OUT_TIP;
+        j->cfg.tool_r = v;
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "LINES")) {
+        return cmd_raster(j, 0, line, st, ln, nt);
+    }
+    if (parse_is(w0, l0, "CIRCLES")) {
+        return cmd_raster(j, 1, line, st, ln, nt);
+    }
+    if (parse_is(w0, l0, "STEPS")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &u);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        if (u > CP_MAX_STEPS) {
+            return CP_ST_TOO_MANY;
+        }
+        if (u == 0u) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->cfg.steps = (uint16_t)u;
+        j->cfg.tol = CP_R(0.0);
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "TOL")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = parse_real(line + st[1], ln[1], &v);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        if (v < CP_R(0.01) || v > CP_R(10000.0)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->cfg.tol = v * CP_R(0.001);
+        j->cfg.steps = 0;
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "FEED")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = parse_real(line + st[1], ln[1], &v);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        if (v < CP_R(0.0) || v > JOB_FEED_MAX) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->feed = v;
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "FORMAT")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        if (parse_is(line + st[1], ln[1], "GCODE")) {
+            j->format = JOB_GCODE;
+        } else if (parse_is(line + st[1], ln[1], "FRAMES")) {
+            j->format = JOB_FRAMES;
+        } else {
+            return CP_ST_BAD_KEYWORD;
+        }
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "RXBUF")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &u);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->rxbuf = (uint16_t)u;
+        return CP_ST_OK;
+    }
+    if (parse_is(w0, l0, "CHECKSUM")) {
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        if (parse_is(line + st[1], ln[1], "ON")) {
+            j->checksum = 1;
+        } else if (parse_is(line + st[1], ln[1], "OFF")) {
+            j->checksum = 0;
+        } else {
+            return CP_ST_BAD_KEYWORD;
+        }
+        return CP_ST_OK;
+    }
+    return JOB_NOT_MINE;
+}
