@@ -30,7 +30,7 @@ bench-accuracy: $(BUILD)/host/accuracy_f $(BUILD)/host/accuracy_d
 .PHONY: guard-docs
 ## guard-docs: docs/PROTOCOL.md's status table equals the one generated from cp_status.def
 guard-docs:
-	$(Q)sed -n '/<!-- status-table:begin -->/,/<!-- status-table:end -->/p' docs/PROTOCOL.md | sed '1d;$$d' > $(BUILD)/status_doc.md 2>/dev/null || mkdir -p $(BUILD)
+	@mkdir -p $(BUILD)
 	$(Q)sed -n '/<!-- status-table:begin -->/,/<!-- status-table:end -->/p' docs/PROTOCOL.md | sed '1d;$$d' > $(BUILD)/status_doc.md
 	$(Q)sh tools/gen_status_md.sh > $(BUILD)/status_gen.md
 	$(Q)if cmp -s $(BUILD)/status_doc.md $(BUILD)/status_gen.md; then echo "guard-docs: 1 passed, 0 failed"; \
