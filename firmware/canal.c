@@ -226,13 +226,13 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
         unsigned ia = c->curve == CANAL_ARC ? 3u : 4u;
         cp_real a0 = c->cp[ia], a1 = c->cp[ia + 1u];
         if (c->curve == CANAL_ARC) {
-            if (c->cp[2] < CP_R(0.0)) {
+            if (c->cp[2] <= CP_R(0.0)) {
                 return CP_ERR_RANGE;
             }
             c->cmin = c->cp[2];
             size = c->cp[2];
         } else {
-            if (c->cp[2] < CP_R(0.0) || c->cp[3] < CP_R(0.0)) {
+            if (c->cp[2] <= CP_R(0.0) || c->cp[3] <= CP_R(0.0)) {
                 return CP_ERR_RANGE;
             }
             c->cmin = c->cp[2] < c->cp[3] ? c->cp[2] : c->cp[3];
