@@ -1,0 +1,183 @@
+# mk/m4f.mk - Cortex-M4F cross build (QEMU mps2-an386): firmware image, unit tests on
+# QEMU, size/stack budgets, allocation/double/warning guards, instruction-count bench.
+# SPDX-License-Identifier: MIT
+#
+# Included by the top Makefile (uses its BUILD, CROSS, WARN, FPFLAGS, INC, FW_SRC,
+# TEST_SRC, HOST_FW_OBJ, Q). Images under $(BUILD)/m4f:
+#   fw.elf     firmware/*.c + hal/cortex-m (startup, UART0/TIMER0 port, main_cm)
+#              linked with linker/mps2_an386.ld (FLASH/RAM lengths = budget)
+#   unit.elf   the unit tests + firmware, printf/semihosting (linker/mps2_an386_test.ld)
+#   bench.elf  bench/bench_m4f.c + firmware + tests/hal_mem.c (instruction counts)
+#
+# Run the firmware with UART0 on a pty the host created (host_sim does this):
+#   qemu-system-arm -M mps2-an386 -display none -monitor none -serial /dev/pts/N \
+#       -semihosting-config enable=on,target=native -icount shift=7 -kernel build/m4f/fw.elf
+# (m4f-qemu-fw prints this line with the image path filled in.)
+
+M4F      := $(BUILD)/m4f
+M4F_CC   := $(CROSS)gcc
+M4F_NM   := $(CROSS)nm
+M4F_SIZE := $(CROSS)size
+M4F_OBJDUMP := $(CROSS)objdump
+QEMU     ?= qemu-system-arm
+VALGRIND ?= valgrind
+QEMU_RUN := timeout 60 $(QEMU) -M mps2-an386 -display none -monitor none -serial null \
+            -semihosting-config enable=on,target=native -icount shift=7 -kernel
+
+# Budgets: linker/budget.txt is the single source (key value lines).
+budget = $(shell awk '$$1=="$(1)" {print $$2}' linker/budget.txt)
+M4F_STACK    := $(call budget,stack)
+M4F_STACK_FN := $(call budget,stack_fn)
+# Stack region of the test and bench images (they link printf and soft doubles).
+M4F_TEST_STACK ?= 65536
+
+M4F_CPU := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16
+M4F_OPT := -Os -g -ffunction-sections -fdata-sections -fno-common
+M4F_CFLAGS := $(WARN) $(FPFLAGS) $(M4F_CPU) $(M4F_OPT) $(INC)
+# Firmware and port objects also emit .su/.ci files for tools/stack.sh.
+M4F_FWFLAGS := $(M4F_CFLAGS) -fstack-usage -fcallgraph-info=su -Wstack-usage=$(M4F_STACK_FN)
+M4F_LDFLAGS := $(M4F_CPU) --specs=nano.specs -nostartfiles -Wl,--gc-sections -Llinker
+
+M4F_FW_OBJ   := $(patsubst firmware/%.c,$(M4F)/fw/%.o,$(FW_SRC))
+M4F_PORT_OBJ := $(M4F)/hal/startup.o $(M4F)/hal/hal_uart_cmsdk.o $(M4F)/hal/main_cm.o
+# Unit tests on the target: everything the host runs except POSIX-only files.
+M4F_TEST_SRC := $(filter-out tests/test_posix_%.c,$(TEST_SRC))
+M4F_TEST_OBJ := $(patsubst tests/%.c,$(M4F)/tests/%.o,$(M4F_TEST_SRC))
+M4F_SEMI_OBJ := $(M4F)/hal/startup.o $(M4F)/hal/semihost.o
+
+# HAL callees reached through struct hal_uart function pointers in the firmware image
+# (gcc's call graph shows them as __indirect_call). tools/stack.sh charges every
+# indirect call with the deepest of these. Ports must keep these leaf-ish.
+M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
+M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
+
+.PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
+        guard-warn guard-budget guard-stack guard-selftest m4f-pty
+
+##
+## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
+m4f-fw: $(M4F)/fw.elf
+
+$(M4F)/fw/%.o: firmware/%.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_FWFLAGS) -MMD -MP -c $< -o $@
+
+# startup.c must not have its copy/zero loops turned into memcpy/memset calls.
+$(M4F)/hal/startup.o: hal/cortex-m/startup.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_FWFLAGS) -fno-tree-loop-distribute-patterns -MMD -MP -c $< -o $@
+
+$(M4F)/hal/%.o: hal/cortex-m/%.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_FWFLAGS) -MMD -MP -c $< -o $@
+
+$(M4F)/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_CFLAGS) -O2 -Wno-double-promotion -DTEST_NO_MAIN -DTEST_WORD='"m4f"' \
+	    -MMD -MP -c $< -o $@
+
+$(M4F)/bench/%.o: bench/%.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_CFLAGS) -Ibench -Ihal/cortex-m -MMD -MP -c $< -o $@
+
+$(M4F)/fw.elf: $(M4F_FW_OBJ) $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld \
+               linker/budget.txt
+	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386.ld -Wl,--defsym=CP_STACK=$(M4F_STACK) \
+	    -Wl,-Map=$@.map -o $@ $(M4F_FW_OBJ) $(M4F_PORT_OBJ) -lm
+
+## m4f-unit: unit tests on QEMU mps2-an386 (runner word "m4f")
+m4f-unit: $(M4F)/unit.elf
+	$(Q)out=$$($(QEMU_RUN) $< 2>&1); rc=$$?; printf '%s\n' "$$out"; \
+	if ! printf '%s\n' "$$out" | grep -q '^m4f: [0-9]* passed, [0-9]* failed$$'; then \
+	    echo "m4f-unit: no result line (qemu exit $$rc; 124 = timeout, $(SEMIHOST_FAULT) = HardFault)"; \
+	    echo "m4f: 0 passed, 1 failed"; [ $$rc -ne 0 ] || rc=1; \
+	fi; exit $$rc
+SEMIHOST_FAULT := 99
+
+$(M4F)/unit.elf: $(M4F_FW_OBJ) $(M4F_TEST_OBJ) $(M4F_SEMI_OBJ) $(M4F)/hal/main_test.o \
+                 linker/mps2_an386_test.ld linker/cortex_m_common.ld
+	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -u _printf_float -T mps2_an386_test.ld \
+	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
+	    $(M4F_FW_OBJ) $(M4F_TEST_OBJ) $(M4F_SEMI_OBJ) $(M4F)/hal/main_test.o -lm
+
+## m4f-qemu-fw: build fw.elf and print the QEMU command line that serves UART0 on a pty
+m4f-qemu-fw: $(M4F)/fw.elf
+	@echo "$(QEMU) -M mps2-an386 -display none -monitor none -serial /dev/pts/N" \
+	    "-semihosting-config enable=on,target=native -icount shift=7 -kernel $<"
+
+##
+## size: flash, RAM and stack figures of fw.elf (from the ELF and link map) vs linker/budget.txt
+size: $(M4F)/fw.elf
+	$(Q)sh tools/m4f_size.sh $< linker/budget.txt report
+
+## guard-budget: fail if fw.elf exceeds linker/budget.txt (or the linker script disagrees)
+guard-budget: $(M4F)/fw.elf
+	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard
+
+M4F_STACK_ARGS = --elf $(M4F)/fw.elf --root Reset_Handler --isr "$(M4F_ISRS)" \
+    --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
+    $(M4F_FW_OBJ:.o=.ci) $(M4F_PORT_OBJ:.o=.ci)
+
+## stack: worst-case static stack path of fw.elf (from gcc .su/.ci) and the largest frames
+stack: $(M4F)/fw.elf
+	$(Q)sh tools/stack.sh $(M4F_STACK_ARGS)
+
+## guard-stack: fail if a firmware frame exceeds stack_fn or the worst path exceeds the stack region
+guard-stack: $(M4F)/fw.elf
+	$(Q)sh tools/stack.sh --guard $(M4F_STACK_ARGS)
+
+##
+## guard-alloc: nm bans malloc/free/printf/exit/... in firmware objects (host + M4F) and fw.elf
+guard-alloc: $(HOST_FW_OBJ) $(M4F_FW_OBJ) $(M4F)/fw.elf
+	$(Q)sh tools/guard.sh alloc guard-alloc $(HOST_FW_OBJ) $(M4F_FW_OBJ) $(M4F)/fw.elf
+
+## guard-double: nm bans double-precision helpers (__aeabi_d*, *2d) in fw.elf and M4F objects
+guard-double: $(M4F_FW_OBJ) $(M4F)/fw.elf
+	$(Q)sh tools/guard.sh double guard-double $(M4F)/fw.elf $(M4F_FW_OBJ)
+
+## guard-warn: every firmware/*.c and hal/*/*.c through clang and gcc with $(WARN)
+GUARD_WARN_ARGS = CC="$(CC)" CLANG="$(CLANG)" M4F_CC="$(M4F_CC)" \
+    WARN="$(WARN) $(FPFLAGS)" INC="-Ifirmware -Ihal"
+guard-warn:
+	$(Q)$(GUARD_WARN_ARGS) sh tools/guard.sh warn guard-warn $(FW_SRC) $(wildcard hal/*/*.c)
+
+## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt
+guard-selftest: $(M4F_PORT_OBJ)
+	$(Q)CC="$(CC)" M4F_CC="$(M4F_CC)" HOST_CFLAGS="$(HOST_CFLAGS)" \
+	    M4F_FWFLAGS="$(M4F_FWFLAGS)" M4F_LDFLAGS="$(M4F_LDFLAGS)" M4F_STACK="$(M4F_STACK)" \
+	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" \
+	    sh tools/guard_selftest.sh $(M4F_PORT_OBJ)
+
+##
+## bench: instructions per call of bench/bench_m4f.c routines on QEMU (-icount shift=7), run twice
+bench: $(M4F)/bench.elf
+	$(Q)set -e; for i in 1 2; do \
+	    $(QEMU_RUN) $< > $(M4F)/bench.run$$i 2>&1 || { cat $(M4F)/bench.run$$i; exit 1; }; done; \
+	cat $(M4F)/bench.run1; \
+	if cmp -s $(M4F)/bench.run1 $(M4F)/bench.run2; then \
+	    echo "bench: 2 QEMU runs, identical counts"; \
+	else echo "bench: runs DIFFER:"; diff $(M4F)/bench.run1 $(M4F)/bench.run2; exit 1; fi
+
+$(M4F)/bench.elf: $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
+                  linker/mps2_an386_test.ld linker/cortex_m_common.ld
+	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
+	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
+	    $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
+
+## bench-host: the same routines natively, instructions per call by valgrind callgrind
+bench-host: $(BUILD)/host/bench_host
+	$(Q)rm -f $(BUILD)/host/bench_cg.out*
+	$(Q)$(VALGRIND) --tool=callgrind --collect-atstart=no \
+	    --callgrind-out-file=$(BUILD)/host/bench_cg.out $< > $(BUILD)/host/bench_host.log 2>&1 \
+	    || { cat $(BUILD)/host/bench_host.log; exit 1; }
+	$(Q)sh tools/bench_host.sh $(BUILD)/host/bench_cg.out
+
+$(BUILD)/host/bench_host: bench/bench_m4f.c $(HOST_FW_OBJ) $(BUILD)/host/tests/hal_mem.o
+	$(Q)$(CC) $(HOST_CFLAGS) -DBENCH_HOST -Ibench -o $@ bench/bench_m4f.c $(HOST_FW_OBJ) \
+	    $(BUILD)/host/tests/hal_mem.o -lm
+
+## m4f-pty: fw.elf on QEMU over a host-created pty: $I, error reply, pipelined burst,
+##          and the measured (painted) stack peak read back through the QEMU monitor
+m4f-pty: $(M4F)/fw.elf
+	$(Q)$(PYTHON) tools/m4f_pty.py $< \
+	    $$($(M4F_NM) $< | awk '$$3 == "_sstack" {print $$1}') $(M4F_STACK) $(M4F)/fw_stack_peak.txt
