@@ -37,16 +37,21 @@ static double err3(const struct cp_vec3 *p, const long double m[3])
     return (double)sqrtl(dx * dx + dy * dy + dz * dz);
 }
 
-static double ours(uint32_t n)
+/* ellipse = 1: the same circle given as an ELLIPSE with A = B = 3, which takes the
+ * general Simpson + Kahan quadrature path instead of the exact constant-curvature
+ * Lambda of ARC. */
+static double ours(uint32_t n, int ellipse)
 {
     struct toolpath_cfg cfg = {0};
     struct toolpath tp;
     struct toolpath_pt pt;
     double worst = 0.0;
-    cfg.surf.curve = CANAL_ARC;
+    cfg.surf.curve = ellipse ? CANAL_ELLIPSE : CANAL_ARC;
     cfg.surf.radius = CANAL_R_COS;
     cfg.surf.cp[2] = CP_R(3.0);
-    cfg.surf.cp[4] = CP_TWO_PI;
+    cfg.surf.cp[3] = ellipse ? CP_R(3.0) : CP_R(0.0);
+    cfg.surf.cp[4] = ellipse ? CP_R(0.0) : CP_TWO_PI;
+    cfg.surf.cp[5] = ellipse ? CP_TWO_PI : CP_R(0.0);
     cfg.surf.rp[0] = CP_R(5.5);
     cfg.surf.rp[1] = CP_R(10.5);
     cfg.surf.rp[2] = CP_R(2.0);
@@ -102,16 +107,19 @@ static double frenet(uint32_t n)
 
 int main(void)
 {
-    uint32_t n, n_ours = 0, n_fr = 0, n_ours01 = 0, n_fr01 = 0;
+    uint32_t n, n_ours = 0, n_fr = 0, n_ours01 = 0, n_fr01 = 0, n_simp = 0;
     printf("accuracy (%s build), paper example, %d lines u0 in [-0.5, 0.18], max |error| mm\n",
            CP_REAL_NAME, NLINES);
-    printf("%8s %14s %14s\n", "N", "contact+Simpson", "Frenet+RK4");
+    printf("%8s %16s %16s %14s\n", "N", "contact exact-L", "contact Simpson", "Frenet+RK4");
     for (n = 16; n <= 8192; n *= 2) {
-        double a = ours(n), b = frenet(n);
-        if (a < 0.0) {
-            printf("%8u %14s %14.3e\n", (unsigned)n, "(> max steps)", b);
+        double a = ours(n, 0), c = ours(n, 1), b = frenet(n);
+        if (a < 0.0 || c < 0.0) {
+            printf("%8u %16s %16s %14.3e\n", (unsigned)n, "(> max steps)", "(> max steps)", b);
         } else {
-            printf("%8u %14.3e %14.3e\n", (unsigned)n, a, b);
+            printf("%8u %16.3e %16.3e %14.3e\n", (unsigned)n, a, c, b);
+        }
+        if (n_simp == 0 && c >= 0.0 && c <= 1e-3) {
+            n_simp = n;
         }
         if (n_ours01 == 0 && a >= 0.0 && a <= 1e-4) {
             n_ours01 = n;
@@ -126,8 +134,9 @@ int main(void)
             n_fr = n;
         }
     }
-    printf("accuracy-%s: 1 um needs N = %u (contact) and N = %u (Frenet); 0.1 um needs N = %u "
-           "(contact) and N = %u (Frenet); 0 = never\n",
-           CP_REAL_NAME, (unsigned)n_ours, (unsigned)n_fr, (unsigned)n_ours01, (unsigned)n_fr01);
+    printf("accuracy-%s: 1 um needs N = %u (contact exact), %u (contact Simpson), %u (Frenet); "
+           "0.1 um needs N = %u (contact exact), %u (Frenet); 0 = never\n",
+           CP_REAL_NAME, (unsigned)n_ours, (unsigned)n_simp, (unsigned)n_fr, (unsigned)n_ours01,
+           (unsigned)n_fr01);
     return 0;
 }

@@ -22,8 +22,11 @@
 #include <string.h>
 
 #include "fmt.h"
+#include "frenet.h"
 #include "hal_mem.h"
 #include "proto.h"
+#include "cp_math.h"
+#include "toolpath.h"
 
 #ifdef BENCH_HOST
 #include <stdio.h>
@@ -107,12 +110,140 @@ static void call_proto_info(void)
     bench_sink = (int32_t)mem.out_len;
 }
 
+
+/* ---- canal core on the paper's example: ARC r = 3, R = 5.5 cos 2t + 10.5 ---- */
+static struct toolpath tp_bench;
+static struct toolpath_pt tp_pt;
+
+static void paper_cfg(struct toolpath_cfg *c, uint16_t n, uint16_t steps)
+{
+    memset(c, 0, sizeof *c);
+    c->surf.curve = CANAL_ARC;
+    c->surf.radius = CANAL_R_COS;
+    c->surf.cp[2] = CP_R(3.0);
+    c->surf.cp[4] = CP_TWO_PI;
+    c->surf.rp[0] = CP_R(5.5);
+    c->surf.rp[1] = CP_R(10.5);
+    c->surf.rp[2] = CP_R(2.0);
+    c->mode = TOOLPATH_LINES;
+    c->n = n;
+    c->u0 = CP_R(-0.3);
+    c->u1 = CP_R(0.1);
+    c->steps = steps;
+    c->substeps = 1;
+    c->link = 0;
+}
+
+/* One streamed point of a single family-2 line, mid-line, sequential: 2 jets
+ * (ARC + COS law), Simpson + Kahan on Lambda, frame, label, point, checks. */
+static void setup_tp_next(void)
+{
+    struct toolpath_cfg c;
+    int i;
+    paper_cfg(&c, 1, 256);
+    bench_sink = toolpath_init(&tp_bench, &c);
+    for (i = 0; i < 101; i++) {
+        bench_sink = toolpath_next(&tp_bench, &tp_pt);
+    }
+}
+
+static void call_tp_next(void)
+{
+    bench_sink = toolpath_next(&tp_bench, &tp_pt);
+}
+
+/* Each additional line at the same t: h = alpha + Lambda b, then the point. */
+static struct canal_frame frame_bench;
+static struct canal_point cpt_bench;
+static volatile cp_real lab_a = CP_R(0.97), lab_b = CP_R(0.15), lam_v = CP_R(-1.3);
+
+static void setup_extra_line(void)
+{
+    struct canal_jet j;
+    canal_jet(&tp_bench.surf, CP_R(1.1), &j);
+    canal_frame(&j, &frame_bench);
+}
+
+static void call_extra_line(void)
+{
+    cp_real b = lab_b;
+    canal_point(&frame_bench, lab_a + lam_v * b, b, CP_R(0.0), &cpt_bench);
+    bench_sink = (int32_t)(cpt_bench.m.z * CP_R(1000.0));
+}
+
+static struct canal_jet jet_bench;
+
+static void call_jet(void)
+{
+    canal_jet(&tp_bench.surf, CP_R(1.1), &jet_bench);
+    bench_sink = (int32_t)jet_bench.r;
+}
+
+/* The paper's Frenet two-quadrature form (baseline), one step of one line. */
+static struct frenet fr_bench;
+static struct cp_vec3 fr_pt;
+
+static void setup_frenet(void)
+{
+    int i;
+    bench_sink = frenet_init(&fr_bench, CP_R(0.0), CP_R(0.0), CP_R(3.0), CP_R(5.5), CP_R(10.5),
+                             CP_R(2.0), CP_R(0.0), CP_TWO_PI, 256u, CP_R(-0.3));
+    for (i = 0; i < 101; i++) {
+        frenet_next(&fr_bench, &fr_pt);
+    }
+}
+
+static void call_frenet(void)
+{
+    frenet_next(&fr_bench, &fr_pt);
+    bench_sink = (int32_t)fr_pt.z;
+}
+
+static volatile cp_real sc_arg = CP_R(1.234);
+static cp_real sc_s, sc_c;
+
+static void call_sincos(void)
+{
+    cp_sincos(sc_arg, &sc_s, &sc_c);
+    bench_sink = (int32_t)(sc_s * CP_R(100.0));
+}
+
+static void call_frame(void)
+{
+    canal_frame(&jet_bench, &frame_bench);
+    bench_sink = (int32_t)frame_bench.p;
+}
+
+static void setup_frame(void)
+{
+    canal_jet(&tp_bench.surf, CP_R(1.1), &jet_bench);
+}
+
+/* Chord-tolerance init of a whole job (5 lines, tol 2 um): the walk that fixes the
+ * step counts and proves regularity before the first point. */
+static void call_tp_init(void)
+{
+    struct toolpath_cfg c;
+    paper_cfg(&c, 5, 0);
+    c.substeps = 0;
+    c.tol = CP_R(0.002);
+    c.link = TOOLPATH_LINK_AUTO;
+    bench_sink = toolpath_init(&tp_bench, &c);
+}
+
 /* ---- the table: add routines here ---- */
 static const struct bench_case cases[] = {
     {"empty", setup_none, call_empty}, /* must stay first: the baseline */
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
     {"proto_poll_idle", setup_proto_idle, call_proto_idle},
     {"proto_poll_$I_line", setup_proto_info, call_proto_info},
+    {"toolpath_next_1line", setup_tp_next, call_tp_next},
+    {"canal_point_extra_line", setup_extra_line, call_extra_line},
+    {"canal_jet_arc_cos", setup_tp_next, call_jet},
+    {"frenet_baseline_step", setup_frenet, call_frenet},
+    {"cp_sincos", setup_none, call_sincos},
+    {"canal_frame", setup_frame, call_frame},
+    {"toolpath_init_tol2um", setup_none, call_tp_init},
 };
 
 #define N_CASES (sizeof cases / sizeof cases[0])

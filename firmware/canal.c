@@ -272,6 +272,17 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
         return CP_ERR_DEGENERATE;
     }
     c->inv_span = CP_R(1.0) / (c->t1 - c->t0);
+    c->kappa_const = (uint8_t)(c->curve == CANAL_ARC || c->curve == CANAL_LINE);
+    c->kappa_c = c->curve == CANAL_ARC ? (cp_real)c->dir / c->cp[2] : CP_R(0.0);
+    c->k_int = 0;
+    if (c->radius == CANAL_R_COS && (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE)) {
+        unsigned ki;
+        for (ki = 1; ki <= 8u; ki++) {
+            if (c->rp[2] == (cp_real)ki) {
+                c->k_int = (uint8_t)ki;
+            }
+        }
+    }
     c->dth = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? (cp_real)c->dir : CP_TWO_PI;
     radius_range(c, &c->rmin, &c->rmax);
     if (!(c->rmin > CP_R(0.0))) {
@@ -343,8 +354,21 @@ void canal_jet(const struct canal *c, cp_real t, struct canal_jet *j)
         j->ddr = CP_R(0.0);
         break;
     case CANAL_R_COS:
-        th = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? d * t : CP_TWO_PI * t;
-        cp_sincos(rp[2] * th, &sn, &cs);
+        if (c->k_int != 0u) {
+            /* (cos k theta, sin k theta) = (cos theta, sin theta)^k as complex numbers:
+             * k - 1 complex products of the curve's own sincos, still in (cs, sn) from
+             * the ARC/ELLIPSE case above (error <= ~2k ulp, k <= 8) */
+            cp_real c1 = cs, s1 = sn, tmp;
+            uint8_t i;
+            for (i = 1; i < c->k_int; i++) {
+                tmp = cs * c1 - sn * s1;
+                sn = sn * c1 + cs * s1;
+                cs = tmp;
+            }
+        } else {
+            th = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? d * t : CP_TWO_PI * t;
+            cp_sincos(rp[2] * th, &sn, &cs);
+        }
         j->r = rp[0] * cs + rp[1];
         j->dr = -rp[0] * rp[2] * sn * c->dth;
         j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
@@ -378,7 +402,6 @@ void canal_frame(const struct canal_jet *j, struct canal_frame *f)
     f->q2 = CP_R(1.0) + f->p * f->p;
     f->kappa = q * ic2 * ic;
     f->dpds = pp * ic2 * ic2;
-    f->g = j->dr * f->kappa;
 }
 
 cp_real canal_g(const struct canal_jet *j)

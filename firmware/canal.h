@@ -70,6 +70,10 @@ struct canal {
     cp_real cmin;         /* min |C'(t)| over [t0, t1] (sampled and refined), mm per unit t */
     cp_real inv_span;     /* 1 / (t1 - t0): d(normalized s)/dt */
     cp_real dth;          /* d(theta)/dt of the COS law: dir (ARC/ELLIPSE) or 2 pi (LINE/BEZIER) */
+    cp_real kappa_c;      /* the constant signed curvature of C when kappa_const (ARC: dir/r, LINE: 0) */
+    uint8_t kappa_const;  /* 1 for ARC and LINE: then Lambda(t) = kappa_c (R(t) - R(t0)) exactly */
+    uint8_t k_int;        /* COS law on ARC/ELLIPSE with integer k in 1..8: cos/sin(k theta) by
+                             complex powers of the curve's own (cos, sin)(theta); else 0 */
 };
 
 /* The 2-jet of C and R at t: everything the surface needs. */
@@ -89,7 +93,6 @@ struct canal_frame {
     cp_real q2;     /* 1 + p^2 */
     cp_real kappa;  /* signed curvature of C, 1/mm (> 0 turning left) */
     cp_real dpds;   /* dp/ds = P/c^4, 1/mm (needs R'') */
-    cp_real g;      /* R' kappa_C = dLambda/dt */
 };
 
 /* A surface point with its unit normal (out of the sphere: n = (m - rho)/R). */

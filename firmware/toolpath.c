@@ -60,6 +60,16 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
 {
     const cp_real w = hp / CP_R(3.0);
     uint32_t m;
+    if (tp->surf.kappa_const) {
+        /* C has constant curvature (ARC, LINE): Lambda = int R' kappa dt = kappa (R(t) - R(t0))
+         * exactly; no quadrature, one jet at the end node (MATH-canal §6). */
+        uint32_t end = fwd ? a + 2u * npan : a - 2u * npan;
+        canal_jet(&tp->surf, t_at(tp, end, hp), j);
+        q->lam = tp->surf.kappa_c * (j->r - tp->r0);
+        q->comp = CP_R(0.0);
+        q->g = CP_R(0.0);
+        return;
+    }
     for (m = 0; m < npan; m++) {
         cp_real gm, ge;
         uint32_t mid = fwd ? a + 1u : a - 1u;
@@ -586,7 +596,8 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     canal_jet(&tp->surf, tp->surf.t0, &j);
     canal_frame(&j, &f);
     tp->q0 = cp_sqrt(f.q2);
-    panels = cfg->substeps ? 0u : lambda_panels(tp);
+    tp->r0 = j.r;
+    panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
     if (tp->mode == TOOLPATH_LINES) {
         err = init_lines(tp, cfg, panels);
     } else {
@@ -677,8 +688,9 @@ static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal
 static int finish(const struct toolpath *tp, const struct canal_point *cp, cp_real t, int line,
                   uint32_t index, struct toolpath_pt *pt)
 {
-    if (!cp_isfinite(cp->m.x) || !cp_isfinite(cp->m.y) || !cp_isfinite(cp->m.z) ||
-        !cp_isfinite(cp->n.x) || !cp_isfinite(cp->n.y) || !cp_isfinite(cp->n.z)) {
+    /* one test covers all six: a NaN or Inf anywhere makes the sum non-finite, and
+     * finite components (|m| <= 1e4 mm, |n| <= 1) cannot overflow it */
+    if (!cp_isfinite(cp->m.x + cp->m.y + cp->m.z + cp->n.x + cp->n.y + cp->n.z)) {
         return CP_ERR_NUMERIC;
     }
     (void)tp;
@@ -703,7 +715,12 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
     if (r <= tp->steps) {
         i = back ? tp->steps - r : r;
         a = i * m2;
-        if (r == 0u && !back) {
+        if (tp->surf.kappa_const) {
+            /* constant curvature: exact Lambda, no quadrature state to march */
+            canal_jet(&tp->surf, t_at(tp, a, tp->hp), &j);
+            tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
+            tp->node = 0xFFFFFFFFu;
+        } else if (r == 0u && !back) {
             /* an even line starts at t0: exact Lambda = 0 */
             struct quad q;
             quad_reset(&tp->surf, &q, &j);

@@ -101,6 +101,7 @@ struct toolpath {
     cp_real u0, u1, tool_r;
     cp_real hp;         /* half-panel width in t: output/node step = 2 substeps hp */
     cp_real q0;         /* q at t0 (labels) */
+    cp_real r0;         /* R(t0): exact Lambda = kappa (R - r0) when the curvature of C is constant */
     uint32_t count;     /* total points */
     uint32_t k;         /* points emitted so far */
     /* quadrature state */

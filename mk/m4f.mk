@@ -32,7 +32,7 @@ M4F_STACK_FN := $(call budget,stack_fn)
 M4F_TEST_STACK ?= 65536
 
 M4F_CPU := -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16
-M4F_OPT := -Os -g -ffunction-sections -fdata-sections -fno-common
+M4F_OPT ?= -Os -g -ffunction-sections -fdata-sections -fno-common
 M4F_CFLAGS := $(WARN) $(FPFLAGS) $(M4F_CPU) $(M4F_OPT) $(INC)
 # Firmware and port objects also emit .su/.ci files for tools/stack.sh.
 M4F_FWFLAGS := $(M4F_CFLAGS) -fstack-usage -fcallgraph-info=su -Wstack-usage=$(M4F_STACK_FN)
@@ -158,11 +158,11 @@ bench: $(M4F)/bench.elf
 	    echo "bench: 2 QEMU runs, identical counts"; \
 	else echo "bench: runs DIFFER:"; diff $(M4F)/bench.run1 $(M4F)/bench.run2; exit 1; fi
 
-$(M4F)/bench.elf: $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
+$(M4F)/bench.elf: $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/frenet.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
                   linker/mps2_an386_test.ld linker/cortex_m_common.ld
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
 	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
-	    $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
+	    $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/frenet.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
 
 ## bench-host: the same routines natively, instructions per call by valgrind callgrind
 bench-host: $(BUILD)/host/bench_host
@@ -172,8 +172,8 @@ bench-host: $(BUILD)/host/bench_host
 	    || { cat $(BUILD)/host/bench_host.log; exit 1; }
 	$(Q)sh tools/bench_host.sh $(BUILD)/host/bench_cg.out
 
-$(BUILD)/host/bench_host: bench/bench_m4f.c $(HOST_FW_OBJ) $(BUILD)/host/tests/hal_mem.o
-	$(Q)$(CC) $(HOST_CFLAGS) -DBENCH_HOST -Ibench -o $@ bench/bench_m4f.c $(HOST_FW_OBJ) \
+$(BUILD)/host/bench_host: bench/bench_m4f.c bench/frenet.c $(HOST_FW_OBJ) $(BUILD)/host/tests/hal_mem.o
+	$(Q)$(CC) $(HOST_CFLAGS) -DBENCH_HOST -Ibench -o $@ bench/bench_m4f.c bench/frenet.c $(HOST_FW_OBJ) \
 	    $(BUILD)/host/tests/hal_mem.o -lm
 
 ## m4f-pty: fw.elf on QEMU over a host-created pty: $I, error reply, pipelined burst,
