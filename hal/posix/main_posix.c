@@ -1,0 +1,92 @@
+/* main_posix.c - firmware entry of the native build (build/host/fw_native).
+ * SPDX-License-Identifier: MIT
+ *
+ * Usage: fw_native [--tty PATH]
+ *   default      serve the protocol on fd 0 (read and write; the pty slave that
+ *                host_sim dup2()s to 0 and 1). The terminal mode is left alone:
+ *                host_sim puts the pty in raw mode from the master side.
+ *   --tty PATH   open PATH (O_RDWR|O_NOCTTY), put it in raw mode, serve on it.
+ *
+ * Owns the single protocol engine (file-scope state is allowed in hal/ only).
+ * Loop: proto_poll() while it makes progress; when idle, sleep in poll(2) on the
+ * descriptor for at most FW_IDLE_MS (no busy loop; the timeout keeps the engine's
+ * millisecond clocks - GCODE peer timeout, FRAMES retransmission - ticking).
+ * The firmware sends nothing until the host speaks (proto.h).
+ * Exit status: 0 after the link hangs up (message on stderr; SIGHUP is ignored so a
+ * hang-up of the controlling pty ends the loop the same way), 2 on a usage or
+ * set-up error. stdout is never used for messages: it may be the serial line.
+ */
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "hal_uart_posix.h"
+#include "proto.h"
+
+/* Longest sleep while idle, ms. Bounds the latency of a timer-driven event. */
+#define FW_IDLE_MS 50
+
+static struct hal_uart_posix port;
+static struct hal_uart uart;
+static struct proto proto;
+
+static int usage(void)
+{
+    fprintf(stderr, "usage: fw_native [--tty PATH]\n");
+    return 2;
+}
+
+int main(int argc, char **argv)
+{
+    struct proto_cfg cfg;
+    const char *tty = NULL;
+    int fd = 0, i, r;
+
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--tty") == 0 && i + 1 < argc) {
+            tty = argv[++i];
+        } else {
+            return usage();
+        }
+    }
+    (void)signal(SIGPIPE, SIG_IGN); /* a closed peer is reported as EPIPE -> CP_ERR_IO */
+    /* the pty may be our controlling terminal: its hang-up is seen as EOF/EIO by the
+     * HAL (exit 0 with a message), not as a fatal SIGHUP */
+    (void)signal(SIGHUP, SIG_IGN);
+    if (tty != NULL) {
+        fd = open(tty, O_RDWR | O_NOCTTY);
+        if (fd < 0) {
+            perror(tty);
+            return 2;
+        }
+        if (hal_uart_posix_raw(fd) != CP_OK) {
+            fprintf(stderr, "fw_native: cannot set raw mode on %s\n", tty);
+            return 2;
+        }
+    }
+    if (hal_uart_posix_init(&port, &uart, fd, fd) != CP_OK) {
+        fprintf(stderr, "fw_native: cannot use fd %d\n", fd);
+        return 2;
+    }
+    cfg.uart = &uart;
+    if (proto_init(&proto, &cfg) != CP_OK) {
+        fprintf(stderr, "fw_native: proto_init failed\n");
+        return 2;
+    }
+    for (;;) {
+        r = proto_poll(&proto);
+        if (r < 0) {
+            break; /* CP_ERR_IO: the link is gone */
+        }
+        if (r == 0 && hal_uart_posix_wait(&port, FW_IDLE_MS) < 0) {
+            break;
+        }
+    }
+    hal_uart_posix_close(&port);
+    fprintf(stderr, "fw_native: link hung up after %lu lines, %lu bytes in, %lu out; exiting\n",
+            (unsigned long)proto.lines_seen, (unsigned long)port.bytes_in,
+            (unsigned long)port.bytes_out);
+    return 0;
+}

@@ -1,0 +1,70 @@
+# mk/sim.mk - POSIX port (native firmware), host_sim, pty sessions, robustness runs.
+# SPDX-License-Identifier: MIT
+#
+# Included by the top Makefile (uses its BUILD, CC, WARN, FPFLAGS, INC, HOST_FW_OBJ, Q).
+# _XOPEN_SOURCE is defined for hal/posix, host_sim and tests/fw_fake.c only, never
+# for firmware/ (the firmware objects are the ones of the unit build).
+#   build/host/fw_native   firmware/*.c + hal/posix (protocol on fd 0, or --tty PATH)
+#   build/host/host_sim    host_sim/*.c (creates the pty, runs native/QEMU/any program)
+#   build/host/fw_fake     tests/fw_fake.c (misbehaving firmwares for sim-robust)
+
+SIM_POSIX   := -D_XOPEN_SOURCE=600
+SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) -Ifirmware -Ihal -Ihost_sim
+SIM_TIMEOUT ?= 2000
+SIM_JOB     ?= tests/jobs/handshake.job
+QEMU        ?= qemu-system-arm
+
+POSIX_SRC   := $(wildcard hal/posix/*.c)
+POSIX_OBJ   := $(patsubst hal/posix/%.c,$(BUILD)/host/posix/%.o,$(POSIX_SRC))
+HOSTSIM_SRC := $(wildcard host_sim/*.c)
+HOSTSIM_OBJ := $(patsubst host_sim/%.c,$(BUILD)/host/host_sim_obj/%.o,$(HOSTSIM_SRC))
+
+.PHONY: fw-native host-sim fw-fake sim-native sim-qemu sim-robust
+
+$(BUILD)/host/posix/%.o: hal/posix/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(WARN) $(FPFLAGS) -O2 -g $(SIM_POSIX) $(INC) -MMD -MP -c $< -o $@
+
+$(BUILD)/host/host_sim_obj/%.o: host_sim/%.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
+
+##
+## fw-native: build build/host/fw_native (firmware/*.c + hal/posix, serves the protocol on a pty)
+fw-native: $(BUILD)/host/fw_native
+$(BUILD)/host/fw_native: $(HOST_FW_OBJ) $(POSIX_OBJ)
+	$(Q)$(CC) -o $@ $^ -lm
+
+## host-sim: build build/host/host_sim (pty host simulator, docs/HOST_SIM.md)
+host-sim: $(BUILD)/host/host_sim
+$(BUILD)/host/host_sim: $(HOSTSIM_OBJ)
+	$(Q)$(CC) -o $@ $^
+
+## fw-fake: build build/host/fw_fake (misbehaving firmwares for sim-robust)
+fw-fake: $(BUILD)/host/fw_fake
+$(BUILD)/host/fw_fake: tests/fw_fake.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(WARN) -O2 -g -D_XOPEN_SOURCE=700 -o $@ $<
+
+## sim-native: host_sim + fw_native over a pty on tests/jobs/handshake.job (runner word "sim")
+sim-native: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
+	$(Q)$(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job $(SIM_JOB) \
+	    --timeout-ms $(SIM_TIMEOUT) --log $(BUILD)/host/sim-native.log
+
+## sim-qemu: the same job against build/m4f/fw.elf on qemu-system-arm mps2-an386 (word "sim")
+ifneq ($(wildcard mk/m4f.mk),)
+sim-qemu: $(BUILD)/host/host_sim m4f-fw
+	$(Q)if ! command -v $(QEMU) >/dev/null 2>&1; then \
+	    echo "sim-qemu: $(QEMU) not found (apt-get install qemu-system-arm)"; \
+	    echo "sim: 0 passed, 1 failed"; exit 1; fi
+	$(Q)$(BUILD)/host/host_sim --target qemu --qemu $(QEMU) --fw $(BUILD)/m4f/fw.elf \
+	    --job $(SIM_JOB) --timeout-ms $(SIM_TIMEOUT) --log $(BUILD)/host/sim-qemu.log
+else
+sim-qemu:
+	@echo "sim-qemu: mk/m4f.mk (target m4f-fw, build/m4f/fw.elf) is missing"
+	@echo "sim: 0 passed, 1 failed"; exit 1
+endif
+
+## sim-robust: host_sim against every bad fw_fake mode: each must fail cleanly, in time (word "robust")
+sim-robust: $(BUILD)/host/host_sim $(BUILD)/host/fw_fake
+	$(Q)BUILD=$(BUILD) sh host_sim/robust.sh
