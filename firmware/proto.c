@@ -209,6 +209,21 @@ static int run_start(struct proto *p, uint32_t first)
     p->t_last = hal_uart_now_ms(p->uart);
     frame_rx_init(&p->frx);
     p->state = PROTO_RUN;
+    if (p->fmt == JOB_GCODE) {
+        /* what the stream will hold, for hosts and judges (a G-code machine skips
+         * '[' lines; this one is not counted against its RX buffer) */
+        tx_str(p, "[RUN:points=");
+        tx_u32(p, toolpath_count(&p->tp));
+        tx_str(p, ",first=");
+        tx_u32(p, first);
+        tx_str(p, p->tp.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=");
+        tx_u32(p, p->tp.n);
+        tx_str(p, ",steps=");
+        tx_u32(p, p->tp.steps);
+        tx_str(p, ",link=");
+        tx_u32(p, p->tp.link);
+        tx_str(p, "]\n");
+    }
     return CP_ST_OK;
 }
 
@@ -280,7 +295,8 @@ static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
         frame_put_u16(pl + 8, p->tp.n);
         frame_put_u16(pl + 10, p->tp.steps);
         frame_put_u16(pl + 12, p->tp.link);
-        return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 14u, out, cap);
+        pl[14] = p->tp.mode;
+        return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 15u, out, cap);
     }
     if (idx <= npts) {
         struct toolpath_pt pt;

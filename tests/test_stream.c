@@ -186,6 +186,8 @@ static int machine_gcode(int rxbuf, int lag, uint32_t first, uint32_t *points, i
         } else if (strcmp(l, "ok") == 0) {
             done = 1;
             break;
+        } else if (strncmp(l, "[RUN:points=", 12) == 0) {
+            continue; /* the run header: not a machine line */
         } else {
             printf("  unexpected line \"%s\"\n", l);
             return __LINE__;
