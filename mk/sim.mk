@@ -9,7 +9,7 @@
 #   build/host/fw_fake     tests/fw_fake.c (misbehaving firmwares for sim-robust)
 
 SIM_POSIX   := -D_XOPEN_SOURCE=600
-SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) -Ifirmware -Ihal -Ihost_sim
+SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) -Ifirmware -Ihal -Ihost_sim -Itests
 SIM_TIMEOUT ?= 2000
 SIM_JOB     ?= tests/jobs/handshake.job
 QEMU        ?= qemu-system-arm
@@ -37,8 +37,13 @@ $(BUILD)/host/fw_native: $(HOST_FW_OBJ) $(POSIX_OBJ)
 
 ## host-sim: build build/host/host_sim (pty host simulator, docs/HOST_SIM.md)
 host-sim: $(BUILD)/host/host_sim
-$(BUILD)/host/host_sim: $(HOSTSIM_OBJ)
-	$(Q)$(CC) -o $@ $^
+$(BUILD)/host/host_sim: $(HOSTSIM_OBJ) $(BUILD)/host/host_sim_obj/ref_canal.o
+	$(Q)$(CC) -o $@ $^ -lm
+
+# the judge's independent reference model (no firmware code)
+$(BUILD)/host/host_sim_obj/ref_canal.o: tests/ref_canal.c tests/ref_canal.h
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
 
 ## fw-fake: build build/host/fw_fake (misbehaving firmwares for sim-robust)
 fw-fake: $(BUILD)/host/fw_fake
