@@ -75,6 +75,7 @@ $(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%
 -include mk/m4f.mk
 -include mk/sim.mk
 -include mk/canal.mk
+-include mk/stream.mk
 
 ## check: every test and guard; ends with one "N passed, N failed" line
 check:

@@ -1,11 +1,16 @@
 /* main_posix.c - firmware entry of the native build (build/host/fw_native).
  * SPDX-License-Identifier: MIT
  *
- * Usage: fw_native [--tty PATH]
+ * Usage: fw_native [--tty PATH | --pty LINK]
  *   default      serve the protocol on fd 0 (read and write; the pty slave that
  *                host_sim dup2()s to 0 and 1). The terminal mode is left alone:
  *                host_sim puts the pty in raw mode from the master side.
  *   --tty PATH   open PATH (O_RDWR|O_NOCTTY), put it in raw mode, serve on it.
+ *   --pty LINK   create a pseudo-terminal itself (Klipper's linux MCU style), make
+ *                LINK a symlink to its slave (/dev/pts/N, also printed on stderr) and
+ *                serve on the master: any serial client (pyserial, a sender) opens
+ *                LINK. The slave is kept open, so clients may come and go; this mode
+ *                ends only on a signal.
  *
  * Owns the single protocol engine (file-scope state is allowed in hal/ only).
  * Loop: proto_poll() while it makes progress; when idle, sleep in poll(2) on the
@@ -19,6 +24,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -34,19 +40,21 @@ static struct proto proto;
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: fw_native [--tty PATH]\n");
+    fprintf(stderr, "usage: fw_native [--tty PATH | --pty LINK]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
     struct proto_cfg cfg;
-    const char *tty = NULL;
+    const char *tty = NULL, *link = NULL;
     int fd = 0, i, r;
 
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tty") == 0 && i + 1 < argc) {
             tty = argv[++i];
+        } else if (strcmp(argv[i], "--pty") == 0 && i + 1 < argc) {
+            link = argv[++i];
         } else {
             return usage();
         }
@@ -55,7 +63,26 @@ int main(int argc, char **argv)
     /* the pty may be our controlling terminal: its hang-up is seen as EOF/EIO by the
      * HAL (exit 0 with a message), not as a fatal SIGHUP */
     (void)signal(SIGHUP, SIG_IGN);
-    if (tty != NULL) {
+    if (link != NULL) {
+        const char *slave;
+        int keep;
+        fd = posix_openpt(O_RDWR | O_NOCTTY);
+        if (fd < 0 || grantpt(fd) != 0 || unlockpt(fd) != 0 || (slave = ptsname(fd)) == NULL) {
+            perror("fw_native: posix_openpt");
+            return 2;
+        }
+        keep = open(slave, O_RDWR | O_NOCTTY); /* held open: clients may come and go */
+        if (keep < 0 || hal_uart_posix_raw(keep) != CP_OK || hal_uart_posix_raw(fd) != CP_OK) {
+            perror(slave);
+            return 2;
+        }
+        (void)unlink(link);
+        if (symlink(slave, link) != 0) {
+            perror(link);
+            return 2;
+        }
+        fprintf(stderr, "fw_native: serving on %s (%s)\n", slave, link);
+    } else if (tty != NULL) {
         fd = open(tty, O_RDWR | O_NOCTTY);
         if (fd < 0) {
             perror(tty);
