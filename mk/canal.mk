@@ -35,3 +35,23 @@ guard-docs:
 	$(Q)sh tools/gen_status_md.sh > $(BUILD)/status_gen.md
 	$(Q)if cmp -s $(BUILD)/status_doc.md $(BUILD)/status_gen.md; then echo "guard-docs: 1 passed, 0 failed"; \
 	else diff $(BUILD)/status_gen.md $(BUILD)/status_doc.md; echo "guard-docs: 0 passed, 1 failed"; exit 1; fi
+
+.PHONY: sizes
+## sizes: sizeof of every firmware context on the M4F (float) and the host double build
+sizes: $(BUILD)/m4f/sizes_probe.o $(BUILD)/hostd/sizes_probe.o
+	@echo "context sizes (bytes)        M4F float   host double"
+	$(Q)for s in toolpath canal job frame_rx proto; do \
+	    a=$$(arm-none-eabi-nm -S $(BUILD)/m4f/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
+	    b=$$(nm -S $(BUILD)/hostd/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
+	    printf "  struct %-20s %9d   %11d\n" $$s $$((0x$$a)) $$((0x$$b)); done
+	@echo "  (struct toolpath <= $$(sed -n 's/^#define CP_TOOLPATH_BUDGET \([0-9]*\)$$/\1/p' firmware/cp_config.h) bytes in the float build: static assert in toolpath.c)"
+
+$(BUILD)/m4f/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
+	@mkdir -p $(@D)
+	$(Q)arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -std=c99 -Os -fno-common -Ifirmware -Ihal -c $< -o $@
+
+$(BUILD)/hostd/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
+	@mkdir -p $(@D)
+	$(Q)$(CC) -std=c99 -O2 -fno-common -DCP_REAL_DOUBLE=1 -Ifirmware -Ihal -c $< -o $@
+
+size: sizes
