@@ -55,3 +55,8 @@ $(BUILD)/hostd/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
 	$(Q)$(CC) -std=c99 -O2 -fno-common -DCP_REAL_DOUBLE=1 -Ifirmware -Ihal -c $< -o $@
 
 size: sizes
+
+.PHONY: guard-readme
+## guard-readme: the C example in README.md compiles and streams every point
+guard-readme:
+	$(Q)BUILD=$(BUILD) CC=$(CC) sh tools/readme_example.sh
