@@ -152,6 +152,23 @@ static void call_tp_next(void)
     bench_sink = toolpath_next(&tp_bench, &tp_pt);
 }
 
+/* The same circle given as an ELLIPSE (A = B = 3): the general path, Simpson + Kahan
+ * on Lambda with 1 panel per step (2 jets per point). */
+static void setup_tp_next_ellipse(void)
+{
+    struct toolpath_cfg c;
+    int i;
+    paper_cfg(&c, 1, 256);
+    c.surf.curve = CANAL_ELLIPSE;
+    c.surf.cp[3] = CP_R(3.0);
+    c.surf.cp[4] = CP_R(0.0);
+    c.surf.cp[5] = CP_TWO_PI;
+    bench_sink = toolpath_init(&tp_bench, &c);
+    for (i = 0; i < 101; i++) {
+        bench_sink = toolpath_next(&tp_bench, &tp_pt);
+    }
+}
+
 /* Each additional line at the same t: h = alpha + Lambda b, then the point. */
 static struct canal_frame frame_bench;
 static struct canal_point cpt_bench;
@@ -238,6 +255,7 @@ static const struct bench_case cases[] = {
     {"proto_poll_idle", setup_proto_idle, call_proto_idle},
     {"proto_poll_$I_line", setup_proto_info, call_proto_info},
     {"toolpath_next_1line", setup_tp_next, call_tp_next},
+    {"toolpath_next_ellipse", setup_tp_next_ellipse, call_tp_next},
     {"canal_point_extra_line", setup_extra_line, call_extra_line},
     {"canal_jet_arc_cos", setup_tp_next, call_jet},
     {"frenet_baseline_step", setup_frenet, call_frenet},

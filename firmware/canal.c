@@ -291,7 +291,7 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-void canal_jet(const struct canal *c, cp_real t, struct canal_jet *j)
+void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
 {
     const cp_real *p = c->cp;
     const cp_real *rp = c->rp;
@@ -386,7 +386,7 @@ void canal_jet(const struct canal *c, cp_real t, struct canal_jet *j)
     }
 }
 
-void canal_frame(const struct canal_jet *j, struct canal_frame *f)
+void canal_frame(const struct canal_jet *restrict j, struct canal_frame *restrict f)
 {
     cp_real c2 = j->dx * j->dx + j->dy * j->dy;
     cp_real ic = CP_R(1.0) / cp_sqrt(c2);

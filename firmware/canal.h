@@ -114,10 +114,10 @@ struct canal_point {
 CP_MUST_CHECK int canal_init(struct canal *c, const struct canal_cfg *cfg);
 
 /* The jet of C and R at t (any t; meaningful in [t0, t1]). Cannot fail. */
-void canal_jet(const struct canal *c, cp_real t, struct canal_jet *j);
+void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
 
 /* Per-t frame from a jet. Requires |C'| > 0 (guaranteed on [t0, t1] by canal_init). */
-void canal_frame(const struct canal_jet *j, struct canal_frame *f);
+void canal_frame(const struct canal_jet *restrict j, struct canal_frame *restrict f);
 
 /* The integrand of Lambda at t: R'(t) kappa_C(t) (7 flops, 1 sqrt, 1 div). */
 cp_real canal_g(const struct canal_jet *j);

@@ -713,11 +713,13 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
     struct canal_point cp;
     cp_real al, bl;
     if (r <= tp->steps) {
+        cp_real t;
         i = back ? tp->steps - r : r;
         a = i * m2;
+        t = t_at(tp, a, tp->hp);
         if (tp->surf.kappa_const) {
             /* constant curvature: exact Lambda, no quadrature state to march */
-            canal_jet(&tp->surf, t_at(tp, a, tp->hp), &j);
+            canal_jet(&tp->surf, t, &j);
             tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
             tp->node = 0xFFFFFFFFu;
         } else if (r == 0u && !back) {
@@ -742,7 +744,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         al = tp->lab_a;
         bl = tp->lab_b;
         emit_point(tp, &f, al + tp->lam * bl, bl, &cp);
-        return finish(tp, &cp, t_at(tp, a, tp->hp), (int)jl, i, pt);
+        return finish(tp, &cp, t, (int)jl, i, pt);
     }
     /* link point r - steps (1..link) after line jl, at its end node */
     {
