@@ -57,7 +57,34 @@ r, end = b"", time.time() + 10
 while time.time() < end and r.count(b"ok\n") < n:
     r += read_until(b"ok\n", 0.2)
 check(r.count(b"ok\n") == n and r.count(b"[VER:") == n, "%d pipelined $I -> %d ok" % (n, r.count(b"ok\n")))
-# 4. measured stack: dump the stack region through the monitor
+# 4. a real job: the deepest firmware paths (toolpath_init's walk, streaming) run
+#    before the stack is read; act as a machine that answers ok per G-code line
+job = [b"CURVE ARC 0 0 3 0 360", b"RADIUS COS 5.5 10.5 2", b"LINES 3 -25 10", b"TOL 20",
+       b"TOOL BALL 1", b"CIRCLES 24 -20 10", b"CHECKSUM ON"]
+okc = 0
+for line in job:
+    os.write(master, line + b"\n")
+    okc += read_until(b"ok\n", 5).endswith(b"ok\n")
+check(okc == len(job), "job accepted (%d/%d ok)" % (okc, len(job)))
+os.write(master, b"RUN\n")
+buf, glines, done, end = b"", 0, False, time.time() + 60
+while time.time() < end and not done:
+    r, _, _ = select.select([master], [], [], 0.05)
+    if r:
+        buf += os.read(master, 4096)
+    while b"\n" in buf:
+        line, buf = buf.split(b"\n", 1)
+        if line.startswith(b"N"):
+            glines += 1
+            os.write(master, b"ok\n")
+        elif line == b"ok" or line.startswith(b"error:"):
+            if line != b"ok":
+                print("  RUN -> %r" % line)
+            done = line == b"ok"
+            end = 0
+            break
+check(done and glines > 50, "RUN streamed %d checksummed G-code lines, then ok" % glines)
+# 5. measured stack: dump the stack region through the monitor
 peak = None
 try:
     s = socket.socket(socket.AF_UNIX)
