@@ -79,14 +79,12 @@ static int numbers(const char *line, const uint16_t *st, const uint16_t *ln, uns
     return CP_ST_OK;
 }
 
-static int cmd_curve(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
-                     unsigned nt)
+/* "<CMD> <KIND> n1 .. nk": find KIND among names[0..3] (arity[] numbers each) and
+ * parse its numbers into v. Returns a wire status; *kind is the index. */
+static int kind_args(const char *line, const uint16_t *st, const uint16_t *ln, unsigned nt,
+                     const char *const *names, const uint8_t *arity, cp_real *v, unsigned *kind)
 {
-    static const char *const names[4] = {"LINE", "ARC", "ELLIPSE", "BEZIER"};
-    static const uint8_t arity[4] = {4u, 5u, 6u, 8u};
-    cp_real v[8];
-    unsigned k, i;
-    int s;
+    unsigned k;
     if (nt < 2u) {
         return CP_ST_BAD_ARITY;
     }
@@ -101,16 +99,24 @@ static int cmd_curve(struct job *j, const char *line, const uint16_t *st, const 
     if (nt != 2u + arity[k]) {
         return CP_ST_BAD_ARITY;
     }
-    s = numbers(line, st, ln, 2u, arity[k], v);
+    *kind = k;
+    return numbers(line, st, ln, 2u, arity[k], v);
+}
+
+static int cmd_curve(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
+                     unsigned nt)
+{
+    static const char *const names[4] = {"LINE", "ARC", "ELLIPSE", "BEZIER"};
+    static const uint8_t arity[4] = {4u, 5u, 6u, 8u};
+    cp_real v[8];
+    unsigned k = 0, i;
+    int s = kind_args(line, st, ln, nt, names, arity, v, &k);
     if (s != CP_ST_OK) {
         return s;
     }
-    if (k == CANAL_ARC) {
-        v[3] *= CP_DEG2RAD;
-        v[4] *= CP_DEG2RAD;
-    } else if (k == CANAL_ELLIPSE) {
-        v[4] *= CP_DEG2RAD;
-        v[5] *= CP_DEG2RAD;
+    if (k == CANAL_ARC || k == CANAL_ELLIPSE) { /* the two angles come last */
+        v[arity[k] - 2u] *= CP_DEG2RAD;
+        v[arity[k] - 1u] *= CP_DEG2RAD;
     }
     j->cfg.surf.curve = (uint8_t)k;
     for (i = 0; i < 8u; i++) {
@@ -124,30 +130,16 @@ static int cmd_radius(struct job *j, const char *line, const uint16_t *st, const
                       unsigned nt)
 {
     static const char *const names[4] = {"CONST", "LINEAR", "COS", "CUBIC"};
+    static const uint8_t arity[4] = {1u, 2u, 3u, 4u};
     cp_real v[4];
-    unsigned k, i;
-    int s;
-    if (nt < 2u) {
-        return CP_ST_BAD_ARITY;
-    }
-    for (k = 0; k < 4u; k++) {
-        if (parse_is(line + st[1], ln[1], names[k])) {
-            break;
-        }
-    }
-    if (k == 4u) {
-        return CP_ST_BAD_KEYWORD;
-    }
-    if (nt != 2u + (k + 1u)) {
-        return CP_ST_BAD_ARITY;
-    }
-    s = numbers(line, st, ln, 2u, k + 1u, v);
+    unsigned k = 0, i;
+    int s = kind_args(line, st, ln, nt, names, arity, v, &k);
     if (s != CP_ST_OK) {
         return s;
     }
     j->cfg.surf.radius = (uint8_t)k;
     for (i = 0; i < 4u; i++) {
-        j->cfg.surf.rp[i] = i <= k ? v[i] : CP_R(0.0);
+        j->cfg.surf.rp[i] = i < arity[k] ? v[i] : CP_R(0.0);
     }
     j->have |= JOB_HAVE_RADIUS;
     return CP_ST_OK;
