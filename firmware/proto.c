@@ -48,7 +48,7 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     p->ring_head = 0;
     p->ring_n = 0;
     p->inflight = 0;
-    p->stale = 0;
+    p->resync = 0;
     p->retries = 0;
     p->start_k = 0;
     p->next = 0;
@@ -203,7 +203,7 @@ static int run_start(struct proto *p, uint32_t first)
     p->ring_head = 0;
     p->ring_n = 0;
     p->inflight = 0;
-    p->stale = 0;
+    p->resync = 0;
     p->retries = 0;
     p->pend_len = 0;
     p->t_last = hal_uart_now_ms(p->uart);
@@ -335,6 +335,15 @@ static int run_emit(struct proto *p)
                 run_finish(p, CP_ST_OK);
                 return 1;
             }
+        } else if (p->resync) {
+            /* after a Resend: the line must be quiet, then start afresh from n */
+            if ((uint32_t)(now - p->t_last) >= PROTO_RESYNC_MS) {
+                p->resync = 0;
+                p->ring_n = 0;
+                p->inflight = 0;
+                p->t_last = now;
+            }
+            return 0;
         } else if (p->state == PROTO_RUN && p->ring_n < PROTO_RING) {
             /* the line is built once into the tx tail (uncommitted) and waits there
              * until the machine's RX buffer has room for it */
@@ -459,19 +468,21 @@ static int starts_with(const struct proto *p, const char *kw)
 static int machine_line(struct proto *p)
 {
     if (starts_with(p, "ok") && p->line_len == 2u) {
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->ring_n > 0u) {
-            p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
-            p->ring_head = (uint8_t)((p->ring_head + 1u) % PROTO_RING);
-            p->ring_n--;
-            p->acked++;
-            if (p->stale > 0u) {
-                p->stale--;
-            }
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
             p->t_last = hal_uart_now_ms(p->uart);
+            if (!p->resync && p->ring_n > 0u) {
+                p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
+                p->ring_head = (uint8_t)((p->ring_head + 1u) % PROTO_RING);
+                p->ring_n--;
+                p->acked++;
+            }
         }
         return 1;
     }
     if (starts_with(p, "error:") || starts_with(p, "ALARM:") || starts_with(p, "Error:")) {
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
+            p->t_last = hal_uart_now_ms(p->uart);
+        }
         if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && !p->job.checksum) {
             run_finish(p, CP_ST_PEER_ERROR);
         }
@@ -488,13 +499,17 @@ static int machine_line(struct proto *p)
         while (a < p->line_len && p->line[a] == ' ') {
             a++;
         }
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && p->stale == 0u &&
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
+            p->t_last = hal_uart_now_ms(p->uart);
+        }
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && !p->resync &&
             parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
             n >= 1u && n - 1u < p->next) {
-            /* regenerate from line n; the oks of the lines already in flight are
-             * still due (one per line), and their Resend: requests are stale */
+            /* regenerate from line n once the machine has gone quiet (run_emit);
+             * later Resend: requests for lines already in flight are ignored */
             p->next = n - 1u;
-            p->stale = p->ring_n;
+            p->resync = 1;
+            p->pend_len = 0;
         }
         return 1;
     }

@@ -53,6 +53,13 @@
 #ifndef PROTO_PEER_TIMEOUT_MS
 #define PROTO_PEER_TIMEOUT_MS 10000u
 #endif
+/* GCODE + CHECKSUM: after "Resend: n" the firmware sends nothing until the machine has
+ * been quiet this long, ms, then forgets its in-flight accounting and resends from n.
+ * (A machine answers a corrupted or merged line unpredictably - Marlin flushes its RX
+ * buffer - so counting its oks cannot be trusted across a resend.) */
+#ifndef PROTO_RESYNC_MS
+#define PROTO_RESYNC_MS 100u
+#endif
 /* GCODE: lines in flight are tracked in a ring of this many entries. */
 #define PROTO_RING 64u
 
@@ -93,7 +100,7 @@ struct proto {
     uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */
     uint8_t ring[PROTO_RING];
     uint16_t inflight;        /* GCODE: bytes of unacknowledged lines */
-    uint16_t stale;           /* GCODE: oks still due for lines sent before a Resend rewind */
+    uint16_t resync;          /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
     uint8_t retries;          /* FRAMES: consecutive timeouts */
     uint8_t pend_len;         /* GCODE: bytes of the built, uncommitted line at tx[tx_len] */
     uint32_t pend_idx;        /* GCODE: stream index of that line */

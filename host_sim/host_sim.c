@@ -3,7 +3,9 @@
  * SPDX-License-Identifier: MIT
  *
  * Usage: host_sim --target native|qemu --job FILE [--fw PATH] [--timeout-ms N]
- *                 [--log FILE] [--qemu PROGRAM] [--cmd PROGRAM [ARGS...]]
+ *                 [--log FILE] [--qemu PROGRAM] [--baud N] [--fault drop|flip|dup|hangup@N]
+ *                 [--resume] [--csv FILE] [--gcode FILE] [--svg FILE] [--raw FILE]
+ *                 [--min-util PCT] [--cmd PROGRAM [ARGS...]]
  * Exit status: 0 iff every check passed; 1 if a check failed; 2 on a usage or
  * set-up error; 130 after SIGINT (the firmware is always killed and reaped).
  * The last line of stdout is always "sim: N passed, N failed" (also on exit 2).
@@ -16,9 +18,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "sim_check.h"
 #include "sim_job.h"
 #include "sim_link.h"
+#include "sim_out.h"
 #include "sim_pty.h"
+#include "sim_run.h"
 
 #define SIM_DEFAULT_NATIVE "build/host/fw_native"
 #define SIM_DEFAULT_QEMU_FW "build/m4f/fw.elf"
@@ -70,7 +75,10 @@ static int usage(const char *msg)
     fprintf(stderr,
             "host_sim: %s\n"
             "usage: host_sim --target native|qemu --job FILE [--fw PATH] [--timeout-ms N]\n"
-            "                [--log FILE] [--qemu PROGRAM] [--cmd PROGRAM [ARGS...]]\n",
+            "                [--log FILE] [--qemu PROGRAM] [--baud N] [--fault KIND@N]\n"
+            "                [--resume] [--csv FILE] [--gcode FILE] [--svg FILE] [--raw FILE]\n"
+            "                [--min-util PCT] [--cmd PROGRAM [ARGS...]]\n"
+            "  KIND: drop | flip | dup | hangup (byte N of the RUN stream, 0-based)\n",
             msg);
     checks.failed++;
     finish_line();
@@ -158,6 +166,259 @@ static int handshake(struct sim_link *l, unsigned timeout_ms, struct hs_result *
     return rc;
 }
 
+/* Options of the RUN receiver and the writers */
+static struct {
+    double baud;
+    int fault;
+    unsigned long fault_at;
+    int resume;
+    const char *csv, *gcode, *svg, *raw;
+    double min_util; /* percent; < 0: not checked */
+} ro = {0.0, SIM_FAULT_NONE, 0, 0, NULL, NULL, NULL, NULL, -1.0};
+
+/* Job state as sent (and answered ok): what the RUN receiver must expect */
+static struct {
+    int frames, checksum;
+    unsigned rxbuf;
+} js = {0, 0, 128};
+
+/* Totals over the RUN commands of the session */
+static struct {
+    unsigned long runs, points;
+    unsigned long long bytes_in, bytes_out;
+    double run_us, wire_us;
+    unsigned long resends, naks, bad, dups, gaps, hangups, resumes;
+} rt;
+
+static FILE *raw_file;
+
+/* Case-insensitive: does text start with the keyword kw as a whole token? */
+static int kw_is(const char *text, const char *kw)
+{
+    size_t i;
+    for (i = 0; kw[i] != '\0'; i++) {
+        char c = text[i];
+        if (c >= 'a' && c <= 'z') {
+            c = (char)(c - 'a' + 'A');
+        }
+        if (c != kw[i]) {
+            return 0;
+        }
+    }
+    return text[i] == '\0' || text[i] == ' ' || text[i] == '\t';
+}
+
+static const char *arg1(const char *text)
+{
+    while (*text != '\0' && *text != ' ' && *text != '\t') {
+        text++;
+    }
+    while (*text == ' ' || *text == '\t') {
+        text++;
+    }
+    return text;
+}
+
+/* A job command was answered ok: track FORMAT, CHECKSUM, RXBUF */
+static void job_state(const char *text)
+{
+    const char *a = arg1(text);
+    if (kw_is(text, "FORMAT")) {
+        js.frames = kw_is(a, "FRAMES");
+    } else if (kw_is(text, "CHECKSUM")) {
+        js.checksum = kw_is(a, "ON");
+    } else if (kw_is(text, "RXBUF")) {
+        js.rxbuf = (unsigned)strtoul(a, NULL, 10);
+    }
+}
+
+static int parse_fault(const char *v)
+{
+    static const char *const names[] = {"drop", "flip", "dup", "hangup"};
+    static const int kinds[] = {SIM_FAULT_DROP, SIM_FAULT_FLIP, SIM_FAULT_DUP, SIM_FAULT_HANGUP};
+    const char *at = strchr(v, '@');
+    size_t i;
+    char *e;
+    if (at == NULL || at[1] < '0' || at[1] > '9') {
+        return -1;
+    }
+    for (i = 0; i < 4; i++) {
+        if (strlen(names[i]) == (size_t)(at - v) && strncmp(v, names[i], (size_t)(at - v)) == 0) {
+            ro.fault = kinds[i];
+            ro.fault_at = strtoul(at + 1, &e, 10);
+            return *e == '\0' ? 0 : -1;
+        }
+    }
+    return -1;
+}
+
+/* Create the pty, start the firmware and do the handshake (one check). */
+static int fw_start(struct sim_pty *pty, struct sim_link *link, FILE *log, char **cmd,
+                    enum sim_target target, const char *qemu, unsigned timeout_ms, int *interrupted)
+{
+    static char err[512], what[256];
+    struct hs_result hs;
+    uint64_t t0 = sim_link_now_us();
+    int rc;
+    if (sim_pty_open(pty, err, sizeof err) != 0) {
+        fprintf(stderr, "host_sim: %s\n", err);
+        return -2;
+    }
+    if (target == SIM_QEMU) {
+        cmd[8] = pty->path; /* -serial /dev/pts/N */
+    }
+    if (sim_pty_spawn(pty, cmd, target != SIM_QEMU, err, sizeof err) != 0) {
+        fprintf(stderr, "host_sim: %s%s\n", err,
+                target == SIM_QEMU && strstr(err, qemu) != NULL
+                    ? " (install qemu-system-arm: apt-get install qemu-system-arm)"
+                    : "");
+        sim_pty_hangup(pty);
+        return -2;
+    }
+    sim_link_init(link, pty, &sim_stop, log);
+    rc = handshake(link, timeout_ms, &hs);
+    snprintf(what, sizeof what, "handshake ($I x%u, %.2f ms)", hs.sends,
+             (double)(sim_link_now_us() - t0) / 1000.0);
+    check(hs.ok, what, hs.why);
+    if (!hs.ok) {
+        *interrupted = rc == SIM_LINK_INTR;
+        return -1;
+    }
+    printf("sim: firmware %s\n", hs.ver);
+    if (hs.opt[0]) {
+        print_limits(hs.opt);
+    }
+    sim_pty_release(pty); /* the firmware has the slave: a death now gives EIO */
+    return 0;
+}
+
+/* End the firmware after a hang-up (before a restart). */
+static void fw_reap(struct sim_pty *pty, enum sim_target target)
+{
+    sim_pty_hangup(pty);
+    if (target == SIM_QEMU || !sim_pty_wait(pty, SIM_SHUTDOWN_MS)) {
+        (void)sim_pty_stop(pty, SIM_KILL_GRACE_MS);
+    }
+}
+
+static void run_opts(struct sim_run_opts *o, unsigned timeout_ms, int first_stream)
+{
+    memset(o, 0, sizeof *o);
+    o->frames = js.frames;
+    o->checksum = js.checksum;
+    o->rxbuf = js.rxbuf;
+    o->byte_us = ro.baud > 0.0 ? 1e7 / ro.baud : 0.0;
+    o->fault = first_stream ? ro.fault : SIM_FAULT_NONE;
+    o->fault_at = ro.fault_at;
+    o->timeout_ms = timeout_ms;
+    o->raw = raw_file;
+    o->progress = isatty(2);
+}
+
+static void run_account(const struct sim_run_result *r, double byte_us)
+{
+    rt.runs++;
+    rt.points += r->got;
+    rt.bytes_in += r->bytes_in;
+    rt.bytes_out += r->bytes_out;
+    rt.run_us += r->dur_us;
+    rt.wire_us += (double)r->bytes_in * byte_us;
+    rt.resends += r->resends;
+    rt.naks += r->naks;
+    rt.bad += r->bad_frames + r->bad_lines;
+    rt.dups += r->dup_frames;
+    rt.gaps += r->gap_frames;
+}
+
+static void run_row(int lineno, const char *cmd, const struct sim_run_result *r)
+{
+    double us = r->dur_us > 0.0 ? r->dur_us : 1.0;
+    printf("  run   line %d \"%s\": %s%s, %lu points (k %lu..), %llu bytes in, %.1f B/point, "
+           "%.0f points/s, %.1f ms (first byte after %.1f ms)",
+           lineno, cmd, r->rc == SIM_LINK_REPLY ? (r->error ? "error" : "ok") : "no reply",
+           r->hung ? " (hang-up injected)" : "", (unsigned long)r->got, (unsigned long)r->first,
+           r->bytes_in, r->got ? (double)r->bytes_in / r->got : 0.0, r->got / (us / 1e6), us / 1000.0,
+           r->first_byte_us / 1000.0);
+    if (ro.baud > 0.0) {
+        printf(", wire %.1f%% (%.1f%% from the first byte)", 100.0 * r->util,
+               100.0 * r->util_stream);
+    }
+    if (r->resends || r->bad_lines) {
+        printf(", resends %lu, bad lines %lu", r->resends, r->bad_lines);
+    }
+    if (r->naks || r->bad_frames || r->dup_frames || r->gap_frames) {
+        printf(", NAKs %lu, bad frames %lu, dup %lu, gap %lu", r->naks, r->bad_frames,
+               r->dup_frames, r->gap_frames);
+    }
+    if (!js.frames) {
+        printf(", max RX %lu/%u", r->max_inbuf, js.rxbuf);
+    }
+    printf("\n");
+}
+
+/* Checks of one finished RUN/RESUME stream (r2: the resumed part, or NULL). */
+static void run_checks(const struct sim_job_cmd *c, const struct sim_run_result *r,
+                       const struct sim_run_result *r2, uint32_t start_k)
+{
+    static char what[256], detail[256];
+    const struct sim_run_result *e = r2 != NULL ? r2 : r; /* the one that ended */
+    int want_err = c->expect == SIM_JOB_EXPECT_ERROR;
+    int pass;
+    if (e->rc != SIM_LINK_REPLY) {
+        snprintf(what, sizeof what, "line %d RUN reply", c->lineno);
+        snprintf(detail, sizeof detail, "%s%s%s", sim_link_strerror(e->rc),
+                 e->why[0] ? "; " : "", e->why);
+        check(0, what, detail);
+        return;
+    }
+    pass = want_err ? (e->error && e->code == c->code) : !e->error;
+    char rep[24];
+    if (e->error) {
+        snprintf(rep, sizeof rep, "error:%d", e->code);
+    } else {
+        snprintf(rep, sizeof rep, "ok");
+    }
+    snprintf(what, sizeof what, "line %d RUN reply %s (want %s)", c->lineno, rep,
+             want_err ? "error" : "ok");
+    check(pass, what, e->why);
+    if (e->error && !e->text_ok) {
+        snprintf(what, sizeof what, "line %d: error:%d text does not match cp_status.def",
+                 c->lineno, e->code);
+        check(0, what, "");
+    }
+    if (!js.frames) {
+        unsigned long ov = r->rx_overflow + (r2 ? r2->rx_overflow : 0);
+        snprintf(what, sizeof what, "line %d character counting (max %lu of RXBUF %u)", c->lineno,
+                 r2 && r2->max_inbuf > r->max_inbuf ? r2->max_inbuf : r->max_inbuf, js.rxbuf);
+        check(ov == 0, what, r->rx_overflow ? r->why : r2 ? r2->why : "");
+        if (!js.checksum) {
+            unsigned long bl = r->bad_lines + (r2 ? r2->bad_lines : 0);
+            snprintf(what, sizeof what, "line %d every machine line parsed", c->lineno);
+            snprintf(detail, sizeof detail, "%lu bad: %s", bl, r->why[0] ? r->why : r2 ? r2->why : "");
+            check(bl == 0, what, detail);
+        }
+    } else {
+        unsigned long oe = r->order_err + (r2 ? r2->order_err : 0);
+        snprintf(what, sizeof what, "line %d frames in order", c->lineno);
+        check(oe == 0, what, oe ? (r->order_err ? r->why : r2->why) : "");
+    }
+    if (!e->error && e->header) {
+        uint32_t got = r->got + (r2 ? r2->got : 0);
+        uint32_t want = e->points - start_k;
+        snprintf(what, sizeof what, "line %d points intact: %lu of %lu (k %lu..%lu)%s", c->lineno,
+                 (unsigned long)got, (unsigned long)want, (unsigned long)start_k,
+                 (unsigned long)e->points - 1ul, r2 ? " across the resume" : "");
+        pass = got == want && (!js.frames || e->end_points == e->got);
+        snprintf(detail, sizeof detail, "END frame says %lu", e->end_points);
+        check(pass, what, js.frames ? detail : "");
+    }
+    if (ro.min_util >= 0.0 && r2 == NULL && ro.fault == SIM_FAULT_NONE) {
+        snprintf(what, sizeof what, "line %d wire utilization %.1f%% >= %.1f%% at %.0f baud",
+                 c->lineno, 100.0 * r->util, ro.min_util, ro.baud);
+        check(100.0 * r->util >= ro.min_util, what, "");
+    }
+}
+
 int main(int argc, char **argv)
 {
     static char err[512], detail[512], what[256];
@@ -169,7 +430,6 @@ int main(int argc, char **argv)
     struct sim_job job;
     struct sim_pty pty;
     struct sim_link link;
-    struct hs_result hs;
     struct sigaction sa;
     FILE *log = NULL;
     uint64_t t_start, t_hs = 0;
@@ -179,7 +439,7 @@ int main(int argc, char **argv)
     char st[32];
 
     setvbuf(stdout, NULL, _IOLBF, 0);
-    for (i = 1; i < (size_t)argc; i += 2) { /* every option takes one value */
+    for (i = 1; i < (size_t)argc; i += 2) { /* every option but --resume takes one value */
         const char *a = argv[i];
         const char *v = i + 1 < (size_t)argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--cmd") == 0) {
@@ -189,6 +449,11 @@ int main(int argc, char **argv)
             cmd = argv + i + 1;
             target = SIM_CMD;
             break;
+        }
+        if (strcmp(a, "--resume") == 0) {
+            ro.resume = 1;
+            i--;
+            continue;
         }
         if (v == NULL) {
             return usage("missing value after an option");
@@ -203,6 +468,30 @@ int main(int argc, char **argv)
             log_path = v;
         } else if (strcmp(a, "--qemu") == 0) {
             qemu = v;
+        } else if (strcmp(a, "--csv") == 0) {
+            ro.csv = v;
+        } else if (strcmp(a, "--gcode") == 0) {
+            ro.gcode = v;
+        } else if (strcmp(a, "--svg") == 0) {
+            ro.svg = v;
+        } else if (strcmp(a, "--raw") == 0) {
+            ro.raw = v;
+        } else if (strcmp(a, "--baud") == 0) {
+            char *e;
+            ro.baud = strtod(v, &e);
+            if (*e != '\0' || ro.baud < 300.0 || ro.baud > 1e8) {
+                return usage("--baud must be 300..100000000");
+            }
+        } else if (strcmp(a, "--min-util") == 0) {
+            char *e;
+            ro.min_util = strtod(v, &e);
+            if (*e != '\0' || ro.min_util < 0.0 || ro.min_util > 100.0) {
+                return usage("--min-util must be 0..100 (percent)");
+            }
+        } else if (strcmp(a, "--fault") == 0) {
+            if (parse_fault(v) != 0) {
+                return usage("--fault must be drop|flip|dup|hangup@N");
+            }
         } else if (strcmp(a, "--timeout-ms") == 0) {
             char *e;
             unsigned long t = strtoul(v, &e, 10);
@@ -227,6 +516,9 @@ int main(int argc, char **argv)
     }
     if (job_path == NULL) {
         return usage("--job FILE is required");
+    }
+    if (ro.min_util >= 0.0 && ro.baud <= 0.0) {
+        return usage("--min-util needs --baud");
     }
     if (fw == NULL) {
         fw = target == SIM_QEMU ? SIM_DEFAULT_QEMU_FW : SIM_DEFAULT_NATIVE;
@@ -255,6 +547,14 @@ int main(int argc, char **argv)
         }
         setvbuf(log, NULL, _IOLBF, 0);
     }
+    if (ro.raw != NULL && (raw_file = fopen(ro.raw, "wb")) == NULL) {
+        fprintf(stderr, "host_sim: %s: %s\n", ro.raw, strerror(errno));
+        goto setup_fail;
+    }
+    if (sim_out_open(ro.csv, ro.gcode, ro.svg) != 0) {
+        goto setup_fail;
+    }
+    sim_check_init();
 
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = sim_on_signal;
@@ -266,10 +566,6 @@ int main(int argc, char **argv)
     (void)sigaction(SIGPIPE, &sa, NULL);
 
     t_start = sim_link_now_us();
-    if (sim_pty_open(&pty, err, sizeof err) != 0) {
-        fprintf(stderr, "host_sim: %s\n", err);
-        goto setup_fail;
-    }
     if (target == SIM_QEMU) {
         size_t k = 0;
         qargv[k++] = (char *)qemu;
@@ -280,7 +576,7 @@ int main(int argc, char **argv)
         qargv[k++] = "-monitor";
         qargv[k++] = "none";
         qargv[k++] = "-serial";
-        qargv[k++] = pty.path;
+        qargv[k++] = "/dev/null"; /* [8]: the pty path, set by fw_start */
         qargv[k++] = "-semihosting-config";
         qargv[k++] = "enable=on,target=native";
         qargv[k++] = "-icount";
@@ -294,36 +590,21 @@ int main(int argc, char **argv)
         qargv[1] = NULL;
         cmd = qargv;
     }
-    printf("sim: target %s, %s on %s, job %s (%lu commands), timeout %u ms\n",
+    printf("sim: target %s, %s, job %s (%lu commands), timeout %u ms%s\n",
            target == SIM_QEMU ? "qemu" : target == SIM_NATIVE ? "native" : "cmd",
-           target == SIM_QEMU ? fw : cmd[0], pty.path, job_path, (unsigned long)job.n,
-           timeout_ms);
-    if (sim_pty_spawn(&pty, cmd, target != SIM_QEMU, err, sizeof err) != 0) {
-        fprintf(stderr, "host_sim: %s%s\n", err,
-                target == SIM_QEMU && strstr(err, qemu) != NULL
-                    ? " (install qemu-system-arm: apt-get install qemu-system-arm)"
-                    : "");
-        sim_pty_hangup(&pty);
+           target == SIM_QEMU ? fw : cmd[0], job_path, (unsigned long)job.n, timeout_ms,
+           ro.baud > 0.0 ? ", paced" : "");
+    if (ro.baud > 0.0) {
+        printf("sim: UART pacing %.0f baud 8N1 (%.2f us/byte) both directions\n", ro.baud,
+               1e7 / ro.baud);
+    }
+    /* 1. firmware and handshake */
+    rc = fw_start(&pty, &link, log, cmd, target, qemu, timeout_ms, &interrupted);
+    if (rc == -2) {
         goto setup_fail;
     }
-    sim_link_init(&link, &pty, &sim_stop, log);
-
-    /* 1. handshake */
-    rc = handshake(&link, timeout_ms, &hs);
     t_hs = sim_link_now_us();
-    snprintf(what, sizeof what, "handshake ($I x%u, %.2f ms)", hs.sends,
-             (double)(t_hs - t_start) / 1000.0);
-    check(hs.ok, what, hs.why);
-    if (hs.ok) {
-        printf("sim: firmware %s\n", hs.ver);
-        if (hs.opt[0]) {
-            print_limits(hs.opt);
-        }
-        sim_pty_release(&pty); /* the firmware has the slave: a death now gives EIO */
-    } else {
-        fatal = 1;
-        interrupted = rc == SIM_LINK_INTR;
-    }
+    fatal = rc != 0;
 
     /* 2. the job */
     if (!fatal) {
@@ -335,18 +616,104 @@ int main(int argc, char **argv)
         static char out[SIM_JOB_LINE_MAX + 2], reply[64], expect[24], esc[31];
         struct sim_reply r;
         uint64_t t0;
-        double ms;
-        int pass = 1;
+        double ms, byte_us = ro.baud > 0.0 ? 1e7 / ro.baud : 0.0;
+        int pass = 1, is_run = kw_is(c->text, "RUN") || kw_is(c->text, "RESUME");
+        if (!is_run && !kw_is(c->text, "$I")) {
+            (void)sim_check_job_line(c->text);
+        }
         memcpy(out, c->text, c->len);
         out[c->len] = '\n';
+        sim_link_escape(c->text, c->len, esc, sizeof esc);
         t0 = sim_link_now_us();
-        rc = sim_link_send(&link, out, c->len + 1u, sim_link_now_ms() + timeout_ms);
+        rc = sim_run_send(&link, out, c->len + 1u, byte_us, sim_link_now_ms() + timeout_ms);
         if (rc == SIM_LINK_REPLY) {
             stats.sent++;
+        }
+        if (rc == SIM_LINK_REPLY && is_run) {
+            static struct sim_run_result r1, r2;
+            struct sim_run_opts o;
+            int resumed = 0;
+            uint32_t start_k = kw_is(c->text, "RESUME") ? (uint32_t)strtoul(arg1(c->text), NULL, 10) : 0u;
+            run_opts(&o, timeout_ms, 1);
+            rc = sim_run_stream(&link, &o, &r1);
+            run_account(&r1, byte_us);
+            run_row(c->lineno, esc, &r1);
+            if (r1.hung) {
+                rt.hangups++;
+            }
+            if (r1.hung && ro.resume && !sim_stop) {
+                /* restart the firmware, send the job again, RESUME at the points we have */
+                size_t j;
+                uint32_t k = r1.header ? r1.first + r1.got : start_k;
+                char rs[40];
+                printf("  resume: link hung up at byte %lu after %lu points; restarting the "
+                       "firmware, RESUME %lu\n", ro.fault_at, (unsigned long)r1.got,
+                       (unsigned long)k);
+                fw_reap(&pty, target);
+                rc = fw_start(&pty, &link, log, cmd, target, qemu, timeout_ms, &interrupted);
+                if (rc == -2) {
+                    check(0, "restart after the hang-up", "");
+                    fatal = 1;
+                    break;
+                }
+                for (j = 0; rc == 0 && j < i; j++) {
+                    const struct sim_job_cmd *cj = &job.cmd[j];
+                    if (kw_is(cj->text, "RUN") || kw_is(cj->text, "RESUME")) {
+                        continue;
+                    }
+                    memcpy(out, cj->text, cj->len);
+                    out[cj->len] = '\n';
+                    rc = sim_run_send(&link, out, cj->len + 1u, byte_us, sim_link_now_ms() + timeout_ms);
+                    if (rc == SIM_LINK_REPLY) {
+                        rc = sim_link_await(&link, sim_link_now_ms() + timeout_ms, &r, NULL, NULL);
+                    }
+                }
+                if (rc != 0) {
+                    check(0, "job sent again after the restart", sim_link_strerror(rc));
+                    fatal = 1;
+                    interrupted = rc == SIM_LINK_INTR;
+                    break;
+                }
+                snprintf(rs, sizeof rs, "RESUME %lu\n", (unsigned long)k);
+                rc = sim_run_send(&link, rs, strlen(rs), byte_us, sim_link_now_ms() + timeout_ms);
+                if (rc == SIM_LINK_REPLY) {
+                    run_opts(&o, timeout_ms, 0);
+                    rc = sim_run_stream(&link, &o, &r2);
+                    run_account(&r2, byte_us);
+                    sim_link_escape(rs, strlen(rs) - 1u, esc, sizeof esc);
+                    run_row(c->lineno, esc, &r2);
+                    rt.resumes++;
+                    resumed = 1;
+                    snprintf(what, sizeof what, "line %d resumed at point %lu", c->lineno,
+                             (unsigned long)k);
+                    check(r2.header && r2.first == k, what, r2.header ? "header first differs" : "no header");
+                }
+            }
+            if (r1.hung && !resumed) {
+                snprintf(what, sizeof what, "line %d RUN: link hung up at byte %lu", c->lineno,
+                         ro.fault_at);
+                check(0, what, ro.resume ? "resume failed" : "no --resume");
+                fatal = 1;
+                break;
+            }
+            run_checks(c, &r1, resumed ? &r2 : NULL, start_k);
+            {
+                const struct sim_run_result *e = resumed ? &r2 : &r1;
+                if (e->rc == SIM_LINK_REPLY) {
+                    stats.ok += !e->error;
+                    stats.error += e->error;
+                    rtts[stats.ok + stats.error - 1u] = (double)(sim_link_now_us() - t0) / 1000.0;
+                } else {
+                    fatal = 1;
+                    interrupted = e->rc == SIM_LINK_INTR;
+                }
+            }
+            continue;
+        }
+        if (rc == SIM_LINK_REPLY) {
             rc = sim_link_await(&link, sim_link_now_ms() + timeout_ms, &r, NULL, NULL);
         }
         ms = (double)(sim_link_now_us() - t0) / 1000.0;
-        sim_link_escape(c->text, c->len, esc, sizeof esc);
         if (rc != SIM_LINK_REPLY) {
             snprintf(detail, sizeof detail, "%s after %.1f ms", sim_link_strerror(rc), ms);
             snprintf(what, sizeof what, "line %d \"%s\"", c->lineno, esc);
@@ -362,6 +729,7 @@ int main(int argc, char **argv)
         } else {
             stats.ok++;
             snprintf(reply, sizeof reply, "ok");
+            job_state(c->text);
         }
         if (r.info) {
             size_t L = strlen(reply);
@@ -438,6 +806,7 @@ int main(int argc, char **argv)
     {
         unsigned long n = stats.ok + stats.error;
         double med = 0.0;
+        unsigned long written = sim_out_close();
         if (n > 0) {
             qsort(rtts, n, sizeof *rtts, cmp_double);
             med = n % 2u ? rtts[n / 2u] : (rtts[n / 2u - 1u] + rtts[n / 2u]) / 2.0;
@@ -451,8 +820,35 @@ int main(int argc, char **argv)
             printf("  %-18s min %.3f, median %.3f, max %.3f\n", "round trip ms", rtts[0], med,
                    rtts[n - 1u]);
         }
+        if (rt.runs > 0) {
+            printf("  %-18s %lu (%s%s), hang-ups %lu, resumes %lu\n", "runs", rt.runs,
+                   js.frames ? "FRAMES" : "GCODE", !js.frames && js.checksum ? "+CHECKSUM" : "",
+                   rt.hangups, rt.resumes);
+            printf("  %-18s %lu\n", "points", rt.points);
+            printf("  %-18s in %llu, out %llu\n", "run bytes", rt.bytes_in, rt.bytes_out);
+            printf("  %-18s %.2f\n", "bytes/point", rt.points ? (double)rt.bytes_in / rt.points : 0.0);
+            printf("  %-18s %.0f\n", "points/s", rt.run_us > 0.0 ? rt.points / (rt.run_us / 1e6) : 0.0);
+            if (ro.baud > 0.0) {
+                printf("  %-18s %.1f%% at %.0f baud\n", "wire utilization",
+                       rt.run_us > 0.0 ? 100.0 * rt.wire_us / rt.run_us : 0.0, ro.baud);
+            } else {
+                printf("  %-18s - (unpaced; use --baud N)\n", "wire utilization");
+            }
+            printf("  %-18s resends %lu, NAKs %lu, bad lines/frames %lu, dup frames %lu, "
+                   "gap frames %lu\n", "retransmits", rt.resends, rt.naks, rt.bad, rt.dups, rt.gaps);
+            printf("  %-18s %.2f\n", "run ms", rt.run_us / 1000.0);
+            if (ro.csv || ro.gcode || ro.svg) {
+                printf("  %-18s %lu points%s%s%s%s%s%s\n", "written", written,
+                       ro.csv ? ", csv " : "", ro.csv ? ro.csv : "", ro.gcode ? ", gcode " : "",
+                       ro.gcode ? ro.gcode : "", ro.svg ? ", svg " : "", ro.svg ? ro.svg : "");
+            }
+        }
         printf("  %-18s %.2f\n", "handshake ms", (double)(t_hs - t_start) / 1000.0);
         printf("  %-18s %.2f\n", "elapsed ms", (double)(sim_link_now_us() - t_start) / 1000.0);
+    }
+    sim_check_report(stdout, &checks.passed, &checks.failed);
+    if (raw_file != NULL) {
+        fclose(raw_file);
     }
     if (log != NULL) {
         fclose(log);
@@ -469,6 +865,10 @@ setup_fail: /* nothing was spawned, or the child is already gone */
     if (log != NULL) {
         fclose(log);
     }
+    if (raw_file != NULL) {
+        fclose(raw_file);
+    }
+    (void)sim_out_close();
     sim_job_free(&job);
     free(rtts);
     checks.failed++;

@@ -23,6 +23,11 @@ static const char *link_status_text(int code)
     }
 }
 
+const char *sim_link_status_text(int code)
+{
+    return link_status_text(code);
+}
+
 uint64_t sim_link_now_us(void)
 {
     struct timespec ts;

@@ -95,6 +95,9 @@ int sim_link_read_line(struct sim_link *l, uint64_t deadline_ms);
 int sim_link_await(struct sim_link *l, uint64_t deadline_ms, struct sim_reply *r,
                    sim_link_line_fn fn, void *ctx);
 
+/* Text of wire status `code` from firmware/cp_status.def, or NULL if unknown. */
+const char *sim_link_status_text(int code);
+
 /* Text of an enum sim_link_rc. */
 const char *sim_link_strerror(int rc);
 
