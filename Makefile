@@ -76,6 +76,7 @@ $(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%
 -include mk/sim.mk
 -include mk/canal.mk
 -include mk/stream.mk
+-include mk/fuzz.mk
 
 ## check: every test and guard; ends with one "N passed, N failed" line
 check:

@@ -114,11 +114,14 @@ int parse_real(const char *s, size_t n, cp_real *out)
     v = (cp_real)m;
     if (exp10 >= 0) {
         v *= pow10_real((unsigned)exp10);
-    } else if (exp10 >= -40) {
-        v /= pow10_real((unsigned)-exp10);
     } else {
-        v /= pow10_real(40u);
-        v /= pow10_real((unsigned)(-exp10 - 40));
+        /* divide in chunks of at most 10^20 so no power overflows a float (10^39 would) */
+        int e = -exp10, c;
+        for (c = 0; c < 3 && e > 0; c++) { /* -exp10 <= 40 + PARSE_MAX_DIGITS < 60 */
+            unsigned chunk = e > 20 ? 20u : (unsigned)e;
+            v /= pow10_real(chunk);
+            e -= (int)chunk;
+        }
     }
     if (!(v <= PARSE_ABS_MAX)) {
         return CP_ST_OUT_OF_RANGE;

@@ -159,9 +159,10 @@ static void run_finish(struct proto *p, int status)
         /* tell a binary host why the stream stopped, then the text reply */
         uint8_t pl[5], buf[16];
         int n;
+        uint32_t sent = p->next > 0u ? p->next - 1u : 0u; /* frames after BEGIN */
         p->pend_len = 0;
         pl[0] = (uint8_t)status;
-        frame_put_u32(pl + 1, p->next > 0u ? p->next - 1u : 0u);
+        frame_put_u32(pl + 1, sent < p->end - 2u ? sent : p->end - 2u); /* points only */
         n = frame_encode((uint8_t)p->next, FRAME_END, pl, sizeof pl, buf, sizeof buf);
         if (n > 0) {
             size_t pos = p->tx_len;
@@ -678,6 +679,11 @@ int proto_poll(struct proto *p)
         p->tx_pos = (uint16_t)(p->tx_pos + (uint16_t)n);
         moved |= (n > 0);
         if (p->tx_pos == p->tx_len) {
+            /* all sent: rewind, carrying a built but uncommitted line along */
+            uint16_t i;
+            for (i = 0; i < p->pend_len; i++) {
+                p->tx[i] = p->tx[p->tx_len + i];
+            }
             p->tx_pos = 0;
             p->tx_len = 0;
         }

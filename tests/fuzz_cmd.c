@@ -1,0 +1,508 @@
+/* fuzz_cmd.c - libFuzzer target: the command-line path, bytes -> proto over the
+ * in-memory HAL, with a fresh engine per input.
+ * SPDX-License-Identifier: MIT
+ *
+ * The input is what the host sends: job commands, RUN/RESUME, real-time bytes,
+ * binary garbage. It is fed in pieces that end at '\n' (at most 96 bytes each),
+ * and between pieces the engine is polled while a minimal machine answers:
+ *   - every G-code stream line (G... or N...) gets "ok";
+ *   - every frame of a FRAMES run is decoded and acknowledged (cumulative ACK).
+ * Invariants (abort() on violation):
+ *   - every text reply is "ok", "error:<code> <text>" with a code of
+ *     cp_status.def and its exact text, an info line "[...]", a report "<...>",
+ *     or a stream line;
+ *   - every streamed point (G1 line or POINT frame) equals the point of an
+ *     independent iterator over the same job, quantised the same way;
+ *   - no hang: the engine consumes its input (no POLL_STALL polls without reading
+ *     a byte while input is pending), and after the input a running job ends
+ *     within DRAIN_BUDGET polls, or at once after an abort (0x18 / ABORT frame);
+ *   - afterwards the engine answers "$I" with "[VER:" ... "ok".
+ * Each run is bounded by a poll budget per input, so a huge job (1M points) is
+ * aborted rather than streamed to the end.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "frame.h"
+#include "hal_mem.h"
+#include "proto.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+#define PIECE_MAX 96u
+#define POLL_STALL 4000   /* polls without consuming pending input = hang */
+#define FEED_BUDGET 20000 /* polls per piece (input is fed while the machine answers) */
+#define DRAIN_BUDGET 6000 /* polls after the input before the run is aborted */
+#define ABORT_BUDGET 2000 /* polls for an abort to end the run */
+
+#define FAIL(...)                                  \
+    do {                                           \
+        fprintf(stderr, "fuzz_cmd: " __VA_ARGS__); \
+        fprintf(stderr, "\n");                     \
+        abort();                                   \
+    } while (0)
+
+static struct hal_mem mem;
+static struct hal_uart uart;
+static struct proto eng;
+
+/* machine / host side */
+static size_t scan;            /* bytes of mem.out already looked at */
+static char tline[200];        /* text line being assembled from the output */
+static size_t tlen;
+static int tline_bin;          /* the line held a non-printable byte (frame bytes) */
+static struct frame_rx frx;    /* frames from the firmware */
+static int saw_ver, saw_ok;    /* for the final $I check */
+static uint8_t pending[512];   /* machine answers not yet queued (in[] full) */
+static size_t npending;
+static size_t in_base;         /* bytes of in[] dropped by in_reset (progress counter) */
+
+/* independent iterator of the current run's job */
+static struct toolpath ref;
+static struct toolpath_cfg ref_cfg, snap_cfg;
+static int ref_ok, have_snap;
+static uint32_t gk;            /* next point index expected in a G-code run (no checksum) */
+static uint8_t snap_checksum;
+
+static void flush_pending(void);
+
+static void send_bytes(const void *b, size_t n)
+{
+    if (npending + n > sizeof pending) {
+        flush_pending();
+    }
+    if (npending + n > sizeof pending) {
+        FAIL("host side cannot queue %u bytes: the firmware does not read", (unsigned)n);
+    }
+    memcpy(pending + npending, b, n);
+    npending += n;
+}
+
+/* Drop the bytes of in[] the firmware has read (compaction). */
+static void in_reset(void)
+{
+    if (mem.in_pos > 0) {
+        memmove(mem.in, mem.in + mem.in_pos, mem.in_len - mem.in_pos);
+        in_base += mem.in_pos;
+        mem.in_len -= mem.in_pos;
+        mem.in_pos = 0;
+    }
+}
+
+/* Bytes the firmware has read so far (monotonic). */
+static size_t in_read(void)
+{
+    return in_base + mem.in_pos;
+}
+
+static void flush_pending(void)
+{
+    if (npending == 0) {
+        return;
+    }
+    in_reset();
+    if (hal_mem_feed(&mem, pending, npending) == 0) {
+        npending = 0;
+    }
+}
+
+static int32_t q(cp_real v, cp_real scale)
+{
+    return (int32_t)cp_floor(v * scale + CP_R(0.5));
+}
+
+static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
+{
+    if (!ref_ok) {
+        return 0;
+    }
+    if (ref.k != k && toolpath_seek(&ref, k) != CP_OK) {
+        return 0;
+    }
+    return toolpath_next(&ref, pt) == CP_OK;
+}
+
+static void ref_start(void)
+{
+    if (!have_snap) {
+        FAIL("stream header without a running job");
+    }
+    if (!ref_ok || memcmp(&ref_cfg, &snap_cfg, sizeof ref_cfg) != 0) {
+        ref_cfg = snap_cfg;
+        ref_ok = toolpath_init(&ref, &ref_cfg) == CP_OK;
+        if (!ref_ok) {
+            FAIL("the firmware runs a job the iterator rejects");
+        }
+    }
+}
+
+/* "X1.2345" style fixed-point field -> integer of 1e-4 units */
+static long fixed4(const char *s, int *ok)
+{
+    long ip = 0, fp = 0;
+    int neg = 0, nd = 0;
+    if (*s == '-') {
+        neg = 1;
+        s++;
+    }
+    while (*s >= '0' && *s <= '9') {
+        ip = ip * 10 + (*s++ - '0');
+        nd++;
+    }
+    if (*s++ != '.' || nd == 0) {
+        *ok = 0;
+        return 0;
+    }
+    for (nd = 0; nd < 4; nd++) {
+        if (*s < '0' || *s > '9') {
+            *ok = 0;
+            return 0;
+        }
+        fp = fp * 10 + (*s++ - '0');
+    }
+    return neg ? -(ip * 10000 + fp) : ip * 10000 + fp;
+}
+
+static void check_g1(const char *g, uint32_t k)
+{
+    struct toolpath_pt pt;
+    const char *x = strstr(g, " X"), *y = strstr(g, " Y"), *z = strstr(g, " Z");
+    int ok = 1;
+    long vx, vy, vz;
+    if (x == NULL || y == NULL || z == NULL) {
+        FAIL("malformed G1 line \"%s\"", g);
+    }
+    vx = fixed4(x + 2, &ok);
+    vy = fixed4(y + 2, &ok);
+    vz = fixed4(z + 2, &ok);
+    if (!ok) {
+        FAIL("malformed number in \"%s\"", g);
+    }
+    if (!ref_point_at(k, &pt)) {
+        FAIL("G1 line for point %u, beyond the job", (unsigned)k);
+    }
+    if (vx != q(pt.p.x, CP_R(10000.0)) || vy != q(pt.p.y, CP_R(10000.0)) ||
+        vz != q(pt.p.z, CP_R(10000.0))) {
+        FAIL("wrong point %u: \"%s\"", (unsigned)k, g);
+    }
+}
+
+static void text_line(char *l)
+{
+    if (strcmp(l, "ok") == 0) {
+        saw_ok = 1;
+        return;
+    }
+    if (strncmp(l, "error:", 6) == 0) {
+        char *end;
+        long code = strtol(l + 6, &end, 10);
+        const char *txt = cp_status_text((int)code);
+        if (end == l + 6 || code < 1 || code >= CP_ST_END_ || *end != ' ' ||
+            strcmp(end + 1, txt) != 0) {
+            FAIL("bad error line \"%s\"", l);
+        }
+        saw_ok = 1;
+        return;
+    }
+    if (l[0] == '[') {
+        if (strncmp(l, "[VER:", 5) == 0) {
+            saw_ver = 1;
+        }
+        if (strncmp(l, "[RUN:points=", 12) == 0) {
+            const char *f = strstr(l, ",first=");
+            ref_start();
+            if (f == NULL) {
+                FAIL("bad run header \"%s\"", l);
+            }
+            gk = (uint32_t)strtoul(f + 7, NULL, 10);
+            if (strtoul(l + 12, NULL, 10) != toolpath_count(&ref)) {
+                FAIL("run header count differs: \"%s\"", l);
+            }
+        }
+        return;
+    }
+    if (l[0] == '<' && l[strlen(l) - 1] == '>') {
+        return;
+    }
+    if (l[0] == 'N') { /* checksum mode: N<n> <line>*<cs> */
+        unsigned cs = 0;
+        char *star = strrchr(l, '*'), *sp = strchr(l, ' ');
+        const char *c;
+        unsigned long n = strtoul(l + 1, NULL, 10);
+        if (star == NULL || sp == NULL || sp > star) {
+            FAIL("bad checksum line \"%s\"", l);
+        }
+        for (c = l; c < star; c++) {
+            cs ^= (unsigned char)*c;
+        }
+        if (strtoul(star + 1, NULL, 10) != cs) {
+            FAIL("bad checksum in \"%s\"", l);
+        }
+        *star = '\0';
+        if (strncmp(sp + 1, "G1 ", 3) == 0) {
+            if (n < 2) {
+                FAIL("point on line N%lu", n);
+            }
+            check_g1(sp + 1, eng.start_k + (uint32_t)(n - 2u));
+        }
+        send_bytes("ok\n", 3);
+        return;
+    }
+    if (strcmp(l, "G21 G90 G17") == 0) {
+        send_bytes("ok\n", 3);
+        return;
+    }
+    if (strncmp(l, "G1 X", 4) == 0) {
+        check_g1(l, gk++);
+        send_bytes("ok\n", 3);
+        return;
+    }
+    FAIL("unexpected output line \"%s\"", l);
+}
+
+static void frame_in(const uint8_t *f)
+{
+    uint8_t ack[8];
+    int n;
+    if (f[2] == FRAME_BEGIN) {
+        ref_start();
+        if (f[0] != 15u + FRAME_OVERHEAD || frame_get_u32(f + 3) != toolpath_count(&ref)) {
+            FAIL("bad BEGIN frame");
+        }
+    } else if (f[2] == FRAME_POINT) {
+        struct toolpath_pt pt;
+        uint32_t k = frame_get_u32(f + 3);
+        if (f[0] != FRAME_POINT_LEN || !ref_point_at(k, &pt)) {
+            FAIL("bad POINT frame (k %u)", (unsigned)k);
+        }
+        if ((int32_t)frame_get_u32(f + 7) != q(pt.p.x, CP_R(10000.0)) ||
+            (int32_t)frame_get_u32(f + 11) != q(pt.p.y, CP_R(10000.0)) ||
+            (int32_t)frame_get_u32(f + 15) != q(pt.p.z, CP_R(10000.0)) ||
+            (int16_t)frame_get_u16(f + 25) != pt.line || frame_get_u16(f + 27) != pt.index) {
+            FAIL("wrong point in frame k %u", (unsigned)k);
+        }
+    } else if (f[2] == FRAME_END) {
+        if (f[0] != 5u + FRAME_OVERHEAD || f[3] >= CP_ST_END_) {
+            FAIL("bad END frame");
+        }
+    } else {
+        FAIL("unknown frame type 0x%02x from the firmware", f[2]);
+    }
+    n = frame_encode((uint8_t)(f[1] + 1u), FRAME_ACK, NULL, 0, ack, sizeof ack);
+    send_bytes(ack, (size_t)n);
+}
+
+/* Look at everything the firmware sent since the last call. Text and frames share
+ * the line: a '\n' ends a text line only when the frame decoder is not inside a
+ * frame (or the line is a "<...>" report, whose '<' = 60 looks like a frame length);
+ * after a text line the decoder is reset, since the firmware never puts text
+ * inside a frame and sends no sync byte before its first frame. */
+static void observe(void)
+{
+    while (scan < mem.out_len) {
+        uint8_t c = mem.out[scan++];
+        if (c == '\n') {
+            int report = tlen > 1 && tline[0] == '<' && tline[tlen - 1] == '>' &&
+                         (strncmp(tline, "<Idle", 5) == 0 || strncmp(tline, "<Run", 4) == 0 ||
+                          strncmp(tline, "<Hold", 5) == 0);
+            if (frx.len == 0u || frx.len == 0xFFu || report) {
+                if (tline_bin || tlen >= sizeof tline - 1) {
+                    FAIL("binary or over-long text line");
+                }
+                tline[tlen] = '\0';
+                text_line(tline);
+                frame_rx_init(&frx);
+                tlen = 0;
+                tline_bin = 0;
+                continue;
+            }
+        }
+        if (frame_rx_feed(&frx, c)) {
+            frame_in(frx.buf);
+            tlen = 0; /* a frame is not text */
+            tline_bin = 0;
+            continue;
+        }
+        if (c == '\n') {
+            tlen = 0; /* a '\n' inside a frame: not text */
+            tline_bin = 0;
+        } else if (tlen < sizeof tline - 1) {
+            tline[tlen++] = (char)c;
+            if (c < 0x20 || c > 0x7E) {
+                tline_bin = 1;
+            }
+        } else {
+            tline_bin = 1;
+        }
+    }
+    if (scan == mem.out_len) {
+        scan = 0;
+        mem.out_len = 0;
+    }
+}
+
+static int trace = -1; /* FUZZ_TRACE=1 in the environment: dump the traffic to stderr */
+
+static void trace_bytes(const char *dir, const uint8_t *b, size_t n)
+{
+    size_t i;
+    if (n == 0) {
+        return;
+    }
+    fprintf(stderr, "%s ", dir);
+    for (i = 0; i < n; i++) {
+        if (b[i] >= 0x20 && b[i] < 0x7F && b[i] != '\\') {
+            fputc(b[i], stderr);
+        } else {
+            fprintf(stderr, "\\x%02x", b[i]);
+        }
+    }
+    fputc('\n', stderr);
+}
+
+static void poll_once(void)
+{
+    size_t in0 = in_read(), out0 = mem.out_len;
+    int r = proto_poll(&eng);
+    if (trace < 0) {
+        trace = getenv("FUZZ_TRACE") != NULL;
+    }
+    if (trace) {
+        trace_bytes("fw<", mem.in + mem.in_pos - (in_read() - in0), in_read() - in0);
+        trace_bytes("fw>", mem.out + out0, mem.out_len - out0);
+    }
+    if (r < 0) {
+        FAIL("proto_poll = %d", r);
+    }
+    if (eng.state != PROTO_IDLE) {
+        snap_cfg = eng.job.cfg;
+        snap_checksum = eng.job.checksum;
+        have_snap = 1;
+    }
+    observe();
+    flush_pending();
+}
+
+/* Feed one piece of host input and poll until it is consumed. */
+static void feed_piece(const uint8_t *b, size_t n)
+{
+    int polls = 0, stall = 0;
+    size_t last;
+    in_reset();
+    while (hal_mem_feed(&mem, b, n) != 0) {
+        poll_once();
+        in_reset();
+        if (++polls > FEED_BUDGET) {
+            FAIL("input buffer never drains");
+        }
+    }
+    last = in_read();
+    while (mem.in_pos < mem.in_len && polls < FEED_BUDGET) {
+        poll_once();
+        polls++;
+        if (in_read() == last) {
+            if (++stall > POLL_STALL) {
+                FAIL("hang: %d polls without reading input (state %d, in %u/%u, rx %u/%u, "
+                     "tx %u/%u, pend %u, ring %u, inflight %u, line_len %u)",
+                     stall, eng.state, (unsigned)mem.in_pos, (unsigned)mem.in_len, eng.rx_pos,
+                     eng.rx_len, eng.tx_pos, eng.tx_len, eng.pend_len, eng.ring_n, eng.inflight,
+                     eng.line_len);
+            }
+        } else {
+            stall = 0;
+            last = in_read();
+        }
+    }
+    /* let the stream run a little with the machine answering */
+    for (polls = 0; polls < 64; polls++) {
+        poll_once();
+    }
+}
+
+static void wait_idle(int budget, const char *what)
+{
+    int i;
+    for (i = 0; i < budget && (eng.state != PROTO_IDLE || mem.in_pos < mem.in_len); i++) {
+        poll_once();
+    }
+    if (eng.state != PROTO_IDLE) {
+        FAIL("hang: run still active %d polls after %s", budget, what);
+    }
+}
+
+/* After the input: let a running job go on with the machine answering, abort it
+ * after the budget, and require the abort to end it. */
+static void drain_run(void)
+{
+    int i;
+    for (i = 0; i < POLL_STALL && (mem.in_pos < mem.in_len || npending > 0); i++) {
+        poll_once(); /* first the bytes still queued (they may start a run) */
+    }
+    for (i = 0; i < DRAIN_BUDGET && eng.state != PROTO_IDLE; i++) {
+        poll_once();
+    }
+    if (eng.state != PROTO_IDLE) {
+        if (eng.fmt == JOB_FRAMES) {
+            uint8_t f[8];
+            uint8_t sync[FRAME_MAX];
+            int n = frame_encode(0, FRAME_ABORT, NULL, 0, f, sizeof f);
+            memset(sync, FRAME_SYNC, sizeof sync);
+            send_bytes(sync, sizeof sync);
+            send_bytes(f, (size_t)n);
+        } else {
+            send_bytes("\x18", 1);
+        }
+        flush_pending();
+        wait_idle(ABORT_BUDGET, "an abort");
+    }
+    for (i = 0; i < 64 && mem.in_pos < mem.in_len; i++) {
+        poll_once();
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    size_t a = 0;
+    int i;
+    struct proto_cfg cfg;
+    hal_mem_init(&mem, &uart);
+    mem.tick_ms = 1;
+    cfg.uart = &uart;
+    if (proto_init(&eng, &cfg) != CP_OK) {
+        FAIL("proto_init");
+    }
+    scan = tlen = npending = in_base = 0;
+    tline_bin = 0;
+    frame_rx_init(&frx);
+    ref_ok = have_snap = 0;
+    gk = 0;
+    while (a < size) {
+        size_t b = a;
+        while (b < size && b - a < PIECE_MAX && data[b] != '\n') {
+            b++;
+        }
+        if (b < size && data[b] == '\n') {
+            b++;
+        }
+        feed_piece(data + a, b - a);
+        a = b;
+    }
+    /* a partial last line is ended first: it may itself be RUN */
+    send_bytes("\n", 1);
+    flush_pending();
+    drain_run();
+    /* the engine still answers */
+    saw_ver = saw_ok = 0;
+    send_bytes("$I\n", 3);
+    flush_pending();
+    for (i = 0; i < 2000 && !(saw_ver && saw_ok && mem.in_pos == mem.in_len); i++) {
+        poll_once();
+    }
+    if (!saw_ver || !saw_ok) {
+        FAIL("no answer to $I after the input (state %d, in %u/%u, pending %u, line_len %u, "
+             "flags %u)", eng.state, (unsigned)mem.in_pos, (unsigned)mem.in_len,
+             (unsigned)npending, eng.line_len, eng.line_flags);
+    }
+    return 0;
+}
