@@ -30,7 +30,10 @@
 void sim_check_init(void);
 
 /* A job command as sent to the firmware (no newline). Returns 0; -1 if the judge
- * cannot model it (then the run is reported as unchecked: a failed check). */
+ * cannot model it (then the run is reported as unchecked: a failed check).
+ * Returns 1 for a job command with bad arguments (arity, number, keyword, range, as
+ * firmware/job.c checks them): the firmware must answer error and the model is left
+ * unchanged, exactly as the firmware leaves its job. Non-job lines return 0. */
 int sim_check_job_line(const char *line);
 
 /* A run starts: the header/BEGIN values as sent by the firmware.
@@ -46,7 +49,10 @@ void sim_check_point(uint32_t k, double x, double y, double z, const double *n);
 void sim_check_run_end(int complete);
 
 /* Print the table (one row per check: max, RMS, limit, pass/fail) to f and add
- * the number of passed and failed checks. */
+ * the number of passed and failed checks. Rows without samples (ortho of CIRCLES
+ * span ANGLE, runs stopped before a second point) and chord of a STEPS job (no
+ * limit) are printed as INFO and not counted; normal only when normals arrived
+ * (FRAMES); coverage is always counted. No run at all: one line, nothing counted. */
 void sim_check_report(FILE *f, int *passed, int *failed);
 
 #endif /* SIM_CHECK_H */
