@@ -306,7 +306,7 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         j->ddy = CP_R(0.0);
         break;
     case CANAL_ARC:
-        cp_sincos(d * t, &sn, &cs);
+        cp_sincos_kernel(d * t, &sn, &cs);
         j->x = p[0] + p[2] * cs;
         j->y = p[1] + p[2] * sn;
         j->dx = -d * p[2] * sn;

@@ -73,7 +73,9 @@ enum cp_err {
 #if defined(__GNUC__)
 #define CP_MUST_CHECK __attribute__((warn_unused_result))
 #define CP_NOINLINE __attribute__((noinline))
+#define CP_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
+#define CP_ALWAYS_INLINE inline
 #define CP_MUST_CHECK
 #define CP_NOINLINE
 #endif
