@@ -9,6 +9,22 @@ LOG=${BUILD:-build}/check.log
 mkdir -p "$(dirname "$LOG")"
 : > "$LOG"
 pass=0; fail=0
+# Preflight: every tool the steps need, with the Debian package that provides it.
+# A missing one is one failed check here (and its steps fail with their own message).
+need() { # description, test command, package
+    if sh -c "$2" >/dev/null 2>&1; then pass=$((pass + 1));
+    else fail=$((fail + 1)); echo "check: missing $1: apt-get install $3  (or: bash .ci/run)"; fi
+}
+if [ -z "${CHECK_STEPS:-}" ]; then
+    echo "== prerequisites"
+    need "arm-none-eabi-gcc" "command -v arm-none-eabi-gcc" gcc-arm-none-eabi
+    need "newlib for arm-none-eabi" "test -f \"\$(arm-none-eabi-gcc -print-file-name=nano.specs)\"" libnewlib-arm-none-eabi
+    need "qemu-system-arm" "command -v qemu-system-arm" qemu-system-arm
+    need "clang" "command -v clang" clang
+    need "libFuzzer/ASan runtime" "test -f \"\$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)\"" libclang-rt-14-dev
+    need "rs274 (LinuxCNC interpreter)" "command -v rs274" linuxcnc-uspace
+    need "pyserial for /usr/bin/python3" "/usr/bin/python3 -c 'import serial'" python3-serial
+fi
 for s in $STEPS; do
     echo "== $s"
     out=$($MAKE --no-print-directory "$s" 2>&1); rc=$?
