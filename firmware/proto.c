@@ -132,7 +132,8 @@ static void reply_info(struct proto *p)
     tx_str(p, "]\n");
 }
 
-/* "<Idle|P:k/m>" or "<Run|L:j|P:k/m>" (k = points sent, m = points of the run). */
+/* "<Idle>" or "<Run|L:j/n|P:k/m>": the line (or circle) j of n of the last point sent,
+ * and k points of the job's m sent (k counts from the job's first point: RESUME). */
 static void reply_report(struct proto *p)
 {
     static const char *const names[3] = {"<Idle", "<Run", "<Hold"};
@@ -142,6 +143,13 @@ static void reply_report(struct proto *p)
         uint32_t items = p->fmt == JOB_GCODE ? p->next : (p->next > 0u ? p->next - 1u : 0u);
         uint32_t npts = p->end - (p->fmt == JOB_GCODE ? 1u : 2u);
         sent = items > npts ? npts : items;
+        {
+            uint32_t k = p->start_k + sent, block = (uint32_t)p->tp.steps + 1u + p->tp.link;
+            tx_str(p, "|L:");
+            tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
+            tx_str(p, "/");
+            tx_u32(p, p->tp.n);
+        }
         tx_str(p, "|P:");
         tx_u32(p, p->start_k + sent);
         tx_str(p, "/");

@@ -287,7 +287,7 @@ int test_stream_realtime(void)
     host_send("!");
     host_send("?");
     for (i = 0; i < 20 && next_line(l, sizeof l, 100); i++) {
-        if (strncmp(l, "<Hold|P:", 8) == 0) {
+        if (strncmp(l, "<Hold|L:0/3|P:", 14) == 0) {
             got_report = 1;
             break;
         }
