@@ -63,6 +63,7 @@ static struct toolpath ref;
 static struct toolpath_cfg ref_cfg, snap_cfg;
 static int ref_ok, have_snap;
 static uint32_t gk;            /* next point index expected in a G-code run (no checksum) */
+static uint32_t hfirst;         /* first point of the run whose header was seen last (checksum mode) */
 static uint8_t snap_checksum;
 
 static void flush_pending(void);
@@ -216,6 +217,8 @@ static void text_line(char *l)
                 FAIL("bad run header \"%s\"", l);
             }
             gk = (uint32_t)strtoul(f + 7, NULL, 10);
+            hfirst = gk; /* lines until the next header belong to this run, even when
+                          * they arrive after the host has already sent a new RESUME */
             if (strtoul(l + 12, NULL, 10) != toolpath_count(&ref)) {
                 FAIL("run header count differs: \"%s\"", l);
             }
@@ -244,7 +247,7 @@ static void text_line(char *l)
             if (n < 2) {
                 FAIL("point on line N%lu", n);
             }
-            check_g1(sp + 1, eng.start_k + (uint32_t)(n - 2u));
+            check_g1(sp + 1, hfirst + (uint32_t)(n - 2u));
         }
         send_bytes("ok\n", 3);
         return;
@@ -477,6 +480,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     frame_rx_init(&frx);
     ref_ok = have_snap = 0;
     gk = 0;
+    hfirst = 0;
     while (a < size) {
         size_t b = a;
         while (b < size && b - a < PIECE_MAX && data[b] != '\n') {
