@@ -291,7 +291,10 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
+/* The jet; second = 0 skips the second derivatives (they are left unset): the
+ * streamed point needs only C, C', R, R'. One body for both (flash over speed). */
+static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
+                               struct canal_jet *restrict j, int second)
 {
     const cp_real *p = c->cp;
     const cp_real *rp = c->rp;
@@ -302,8 +305,10 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         j->dy = p[3] - p[1];
         j->x = p[0] + t * j->dx;
         j->y = p[1] + t * j->dy;
-        j->ddx = CP_R(0.0);
-        j->ddy = CP_R(0.0);
+        if (second) {
+            j->ddx = CP_R(0.0);
+            j->ddy = CP_R(0.0);
+        }
         break;
     case CANAL_ARC:
         cp_sincos_kernel(d * t, &sn, &cs);
@@ -311,8 +316,10 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         j->y = p[1] + p[2] * sn;
         j->dx = -d * p[2] * sn;
         j->dy = d * p[2] * cs;
-        j->ddx = -p[2] * cs;
-        j->ddy = -p[2] * sn;
+        if (second) {
+            j->ddx = -p[2] * cs;
+            j->ddy = -p[2] * sn;
+        }
         break;
     case CANAL_ELLIPSE:
         cp_sincos(d * t, &sn, &cs);
@@ -320,8 +327,10 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         j->y = p[1] + p[3] * sn;
         j->dx = -d * p[2] * sn;
         j->dy = d * p[3] * cs;
-        j->ddx = -p[2] * cs;
-        j->ddy = -p[3] * sn;
+        if (second) {
+            j->ddx = -p[2] * cs;
+            j->ddy = -p[3] * sn;
+        }
         break;
     default: { /* CANAL_BEZIER, s = t */
         cp_real b0, b1, b2, b3;
@@ -371,7 +380,9 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         }
         j->r = rp[0] * cs + rp[1];
         j->dr = -rp[0] * rp[2] * sn * c->dth;
-        j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
+        if (second) {
+            j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
+        }
         break;
     default: /* CANAL_R_CUBIC */
         u = CP_R(1.0) - s;
@@ -379,11 +390,35 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
         j->dr = CP_R(3.0) *
                 ((rp[1] - rp[0]) * u * u + CP_R(2.0) * (rp[2] - rp[1]) * s * u + (rp[3] - rp[2]) * s * s) *
                 c->inv_span;
-        j->ddr = CP_R(6.0) *
-                 ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u + (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
-                 c->inv_span * c->inv_span;
+        if (second) {
+            j->ddr = CP_R(6.0) *
+                     ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u + (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
+                     c->inv_span * c->inv_span;
+        }
         break;
     }
+}
+
+void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
+{
+    jet_eval(c, t, j, 1);
+}
+
+void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
+{
+    jet_eval(c, t, j, 0);
+}
+
+void canal_frame_pt(const struct canal_jet *restrict j, struct canal_frame *restrict f)
+{
+    cp_real ic = CP_R(1.0) / cp_sqrt(j->dx * j->dx + j->dy * j->dy);
+    f->x = j->x;
+    f->y = j->y;
+    f->tx = j->dx * ic;
+    f->ty = j->dy * ic;
+    f->r = j->r;
+    f->p = j->dr * ic;
+    f->q2 = CP_R(1.0) + f->p * f->p;
 }
 
 void canal_frame(const struct canal_jet *restrict j, struct canal_frame *restrict f)

@@ -685,7 +685,7 @@ static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal
     tp->g_node = q.g;
 }
 
-static int finish(const struct toolpath *tp, const struct canal_point *cp, cp_real t, int line,
+static CP_ALWAYS_INLINE int finish(const struct toolpath *tp, const struct canal_point *cp, cp_real t, int line,
                   uint32_t index, struct toolpath_pt *pt)
 {
     /* one test covers all six: a NaN or Inf anywhere makes the sum non-finite, and
@@ -719,7 +719,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         t = t_at(tp, a, tp->hp);
         if (tp->surf.kappa_const) {
             /* constant curvature: exact Lambda, no quadrature state to march */
-            canal_jet(&tp->surf, t, &j);
+            canal_jet1(&tp->surf, t, &j);
             tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
             tp->node = 0xFFFFFFFFu;
         } else if (r == 0u && !back) {
@@ -736,7 +736,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         } else {
             quad_to(tp, a, back, &j);
         }
-        canal_frame(&j, &f);
+        canal_frame_pt(&j, &f);
         if (tp->lab_line != (int32_t)jl) {
             first_label(tp, line_u0(tp, jl), &tp->lab_a, &tp->lab_b);
             tp->lab_line = (int32_t)jl;
@@ -753,7 +753,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         i = back ? 0u : tp->steps;
         a = i * m2;
         quad_to(tp, a, back, &j);
-        canal_frame(&j, &f);
+        canal_frame_pt(&j, &f);
         first_label(tp, line_u0(tp, jl), &aa, &ba);
         first_label(tp, line_u0(tp, jl + 1u), &ab, &bb);
         label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
@@ -777,7 +777,7 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         uint32_t i = back ? tp->steps - r : r;
         a = c * (tp->link + 1u) * m2;
         quad_to(tp, a, 0, &j);
-        canal_frame(&j, &f);
+        canal_frame_pt(&j, &f);
         bound_label(tp, tp->u0, &f, tp->lam, &aa, &ba);
         bound_label(tp, tp->u1, &f, tp->lam, &ab, &bb);
         label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &hh, &b2);
@@ -788,7 +788,7 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         uint32_t kk = r - tp->steps;
         a = (c * (tp->link + 1u) + kk) * m2;
         quad_to(tp, a, 0, &j);
-        canal_frame(&j, &f);
+        canal_frame_pt(&j, &f);
         bound_label(tp, back ? tp->u0 : tp->u1, &f, tp->lam, &aa, &ba);
         emit_point(tp, &f, aa, ba, &cp);
         return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
