@@ -1068,3 +1068,25 @@ void sim_check_report(FILE *f, int *passed, int *failed)
              cov.header, cov.unchecked, cov.first[0] ? "; first: " : "", cov.first);
     row(f, passed, failed, "coverage", 1, cov.errors == 0ul, d);
 }
+
+int sim_check_surface(double tf, double u, double p[3])
+{
+    struct ref_canal s;
+    double n[3];
+    if ((job.have & 3u) != 3u) {
+        return 0;
+    }
+    ref_canal_set(&s, job.curve, job.radius, job.cp, job.rp);
+    ref_point(&s, s.t0 + tf * (s.t1 - s.t0), u, p, n);
+    return 1;
+}
+
+int sim_check_urange(double *u0, double *u1)
+{
+    if ((job.have & 4u) == 0u) {
+        return 0;
+    }
+    *u0 = job.u0 < job.u1 ? job.u0 : job.u1;
+    *u1 = job.u0 < job.u1 ? job.u1 : job.u0;
+    return 1;
+}

@@ -55,4 +55,11 @@ void sim_check_run_end(int complete);
  * (FRAMES); coverage is always counted. No run at all: one line, nothing counted. */
 void sim_check_report(FILE *f, int *passed, int *failed);
 
+/* The surface of the modelled job (no tool offset) at normalized parameter tf in [0, 1]
+ * and contact-frame angle u (radians), mm. Returns 0 if CURVE/RADIUS are not modelled. */
+int sim_check_surface(double tf, double u, double p[3]);
+
+/* The raster's angle range u0 <= u1 (radians, as in LINES/CIRCLES). 0 if none. */
+int sim_check_urange(double *u0, double *u1);
+
 #endif /* SIM_CHECK_H */

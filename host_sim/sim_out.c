@@ -3,6 +3,8 @@
  */
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "sim_check.h"
 #include <string.h>
 
 #include "sim_out.h"
@@ -106,8 +108,15 @@ static void proj(int view, const struct sim_out_pt *p, double *u, double *v)
     }
 }
 
+#define SVG_GRID_T 48 /* characteristic circles drawn */
+#define SVG_GRID_U 24 /* segments of each */
+#define SVG_GRID_C 240 /* segments of C */
+
 static void svg_write(const char *path)
 {
+    static struct sim_out_pt grid[(SVG_GRID_T + 1) * (SVG_GRID_U + 1) + SVG_GRID_C + 1];
+    unsigned long ngrid;
+    double ga = 0.0, gb = 0.0;
     FILE *f = fopen(path, "w");
     int view;
     unsigned long i;
@@ -120,7 +129,38 @@ static void svg_write(const char *path)
     fprintf(f, "<text x='20' y='24' font-family='sans-serif' font-size='14'>top view</text>\n"
                "<text x='510' y='24' font-family='sans-serif' font-size='14'>isometric view"
                "</text>\n<text x='20' y='530' font-family='sans-serif' font-size='11'>"
-               "%lu points; curvature lines in blues, link moves red</text>\n", npts);
+               "%lu points; curvature lines in blues, link moves red; the surface in grey "
+               "(characteristic circles, and C darker)</text>\n", npts);
+    /* the surface under the toolpath (the paper's Figures 1-2): characteristic circles
+     * (t = const) over the raster's angle range widened by half, and the contact
+     * curve C (u = 0), from the judge's own model; drawn faint, behind the path */
+    ngrid = 0;
+    if (sim_check_urange(&ga, &gb)) {
+        double w = 0.5 * (gb - ga) + 0.05;
+        int c, q;
+        ga = ga - w < -3.0 ? -3.0 : ga - w;
+        gb = gb + w > 3.0 ? 3.0 : gb + w;
+        for (c = 0; c <= SVG_GRID_T; c++) { /* circles */
+            for (q = 0; q <= SVG_GRID_U; q++) {
+                double P[3];
+                if (!sim_check_surface((double)c / SVG_GRID_T, ga + (gb - ga) * q / SVG_GRID_U, P)) {
+                    break;
+                }
+                grid[ngrid].x = (int32_t)(P[0] * 1e4);
+                grid[ngrid].y = (int32_t)(P[1] * 1e4);
+                grid[ngrid].z = (int32_t)(P[2] * 1e4);
+                grid[ngrid++].line = c;
+            }
+        }
+        for (q = 0; q <= SVG_GRID_C && ngrid > 0; q++) { /* C itself */
+            double P[3];
+            (void)sim_check_surface((double)q / SVG_GRID_C, 0.0, P);
+            grid[ngrid].x = (int32_t)(P[0] * 1e4);
+            grid[ngrid].y = (int32_t)(P[1] * 1e4);
+            grid[ngrid].z = (int32_t)(P[2] * 1e4);
+            grid[ngrid++].line = -1;
+        }
+    }
     for (view = 0; view < 2; view++) {
         double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300, s, ox, oy;
         int32_t maxline = 1;
@@ -136,9 +176,29 @@ static void svg_write(const char *path)
         if (npts == 0) {
             break;
         }
+        for (i = 0; i < ngrid; i++) {
+            double u, v;
+            proj(view, &grid[i], &u, &v);
+            umin = u < umin ? u : umin;
+            umax = u > umax ? u : umax;
+            vmin = v < vmin ? v : vmin;
+            vmax = v > vmax ? v : vmax;
+        }
         s = 460.0 / ((umax - umin > vmax - vmin ? umax - umin : vmax - vmin) + 1e-9);
         ox = 10.0 + view * 490.0 + (470.0 - (umax - umin) * s) / 2.0;
         oy = 40.0 + (470.0 - (vmax - vmin) * s) / 2.0;
+        for (i = 0; i < ngrid;) {
+            unsigned long j = i;
+            fprintf(f, "<polyline fill='none' stroke='%s' stroke-width='0.5' points='",
+                    grid[i].line < 0 ? "#888" : "#ccc");
+            for (; j < ngrid && grid[j].line == grid[i].line; j++) {
+                double u, v;
+                proj(view, &grid[j], &u, &v);
+                fprintf(f, "%.2f,%.2f ", ox + (u - umin) * s, oy + (v - vmin) * s);
+            }
+            fprintf(f, "'/>\n");
+            i = j;
+        }
         for (i = 0; i < npts;) {
             unsigned long j = i;
             int32_t ln = pts[i].line;
