@@ -310,28 +310,20 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
             j->ddy = CP_R(0.0);
         }
         break;
-    case CANAL_ARC:
+    case CANAL_ARC: /* an ellipse with A = B = r */
+    case CANAL_ELLIPSE: {
+        cp_real ra = p[2], rb = c->curve == CANAL_ARC ? p[2] : p[3];
         cp_sincos_kernel(d * t, &sn, &cs);
-        j->x = p[0] + p[2] * cs;
-        j->y = p[1] + p[2] * sn;
-        j->dx = -d * p[2] * sn;
-        j->dy = d * p[2] * cs;
+        j->x = p[0] + ra * cs;
+        j->y = p[1] + rb * sn;
+        j->dx = -d * ra * sn;
+        j->dy = d * rb * cs;
         if (second) {
-            j->ddx = -p[2] * cs;
-            j->ddy = -p[2] * sn;
+            j->ddx = -ra * cs;
+            j->ddy = -rb * sn;
         }
         break;
-    case CANAL_ELLIPSE:
-        cp_sincos(d * t, &sn, &cs);
-        j->x = p[0] + p[2] * cs;
-        j->y = p[1] + p[3] * sn;
-        j->dx = -d * p[2] * sn;
-        j->dy = d * p[3] * cs;
-        if (second) {
-            j->ddx = -p[2] * cs;
-            j->ddy = -p[3] * sn;
-        }
-        break;
+    }
     default: { /* CANAL_BEZIER, s = t */
         cp_real b0, b1, b2, b3;
         u = CP_R(1.0) - t;
