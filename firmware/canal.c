@@ -294,7 +294,7 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
 /* The jet; second = 0 skips the second derivatives (they are left unset): the
  * streamed point needs only C, C', R, R'. One body for both (flash over speed). */
 static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
-                               struct canal_jet *restrict j, int second)
+                                 struct canal_jet *restrict j, int second)
 {
     const cp_real *p = c->cp;
     const cp_real *rp = c->rp;
@@ -333,12 +333,14 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         b3 = t * t * t;
         j->x = b0 * p[0] + b1 * p[2] + b2 * p[4] + b3 * p[6];
         j->y = b0 * p[1] + b1 * p[3] + b2 * p[5] + b3 * p[7];
-        j->dx = CP_R(3.0) * ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * t * u +
-                             (p[6] - p[4]) * t * t);
-        j->dy = CP_R(3.0) * ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * t * u +
-                             (p[7] - p[5]) * t * t);
-        j->ddx = CP_R(6.0) * ((p[4] - CP_R(2.0) * p[2] + p[0]) * u + (p[6] - CP_R(2.0) * p[4] + p[2]) * t);
-        j->ddy = CP_R(6.0) * ((p[5] - CP_R(2.0) * p[3] + p[1]) * u + (p[7] - CP_R(2.0) * p[5] + p[3]) * t);
+        j->dx = CP_R(3.0) *
+                ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * t * u + (p[6] - p[4]) * t * t);
+        j->dy = CP_R(3.0) *
+                ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * t * u + (p[7] - p[5]) * t * t);
+        j->ddx = CP_R(6.0) *
+                 ((p[4] - CP_R(2.0) * p[2] + p[0]) * u + (p[6] - CP_R(2.0) * p[4] + p[2]) * t);
+        j->ddy = CP_R(6.0) *
+                 ((p[5] - CP_R(2.0) * p[3] + p[1]) * u + (p[7] - CP_R(2.0) * p[5] + p[3]) * t);
         break;
     }
     }
@@ -380,11 +382,13 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         u = CP_R(1.0) - s;
         j->r = bern3(rp, s);
         j->dr = CP_R(3.0) *
-                ((rp[1] - rp[0]) * u * u + CP_R(2.0) * (rp[2] - rp[1]) * s * u + (rp[3] - rp[2]) * s * s) *
+                ((rp[1] - rp[0]) * u * u + CP_R(2.0) * (rp[2] - rp[1]) * s * u +
+                 (rp[3] - rp[2]) * s * s) *
                 c->inv_span;
         if (second) {
             j->ddr = CP_R(6.0) *
-                     ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u + (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
+                     ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u +
+                      (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
                      c->inv_span * c->inv_span;
         }
         break;
@@ -457,7 +461,8 @@ void canal_point(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_
 
 cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off)
 {
-    return f->q2 * b * b + h * h - CP_R(2.0) * (f->r - rad_off) * (f->kappa * h * b + f->dpds * b * b);
+    return f->q2 * b * b + h * h -
+           CP_R(2.0) * (f->r - rad_off) * (f->kappa * h * b + f->dpds * b * b);
 }
 
 void canal_label(const struct canal_frame *f0, cp_real u0, cp_real *alpha, cp_real *b)

@@ -33,24 +33,26 @@
 #include "cp_types.h"
 
 enum canal_curve_kind {
-    CANAL_LINE = 0,    /* cp = x0 y0 x1 y1                       C(s) = P0 + s (P1 - P0), s in [0,1] */
-    CANAL_ARC = 1,     /* cp = cx cy r a0 a1                     C = c + r (cos a, sin a), a from a0 to a1 */
+    CANAL_LINE = 0, /* cp = x0 y0 x1 y1                       C(s) = P0 + s (P1 - P0), s in [0,1] */
+    CANAL_ARC =
+        1, /* cp = cx cy r a0 a1                     C = c + r (cos a, sin a), a from a0 to a1 */
     CANAL_ELLIPSE = 2, /* cp = cx cy A B a0 a1                   C = c + (A cos a, B sin a) */
     CANAL_BEZIER = 3   /* cp = x0 y0 x1 y1 x2 y2 x3 y3           cubic Bezier, s in [0,1] */
 };
 
 enum canal_radius_kind {
-    CANAL_R_CONST = 0,  /* rp = c          R = c */
-    CANAL_R_LINEAR = 1, /* rp = r0 r1      R = r0 + (r1 - r0) s,  s = normalized parameter in [0,1] */
-    CANAL_R_COS = 2,    /* rp = b c k      R = b cos(k theta) + c, theta = the curve angle (ARC/ELLIPSE),
-                                           2 pi s (LINE/BEZIER); k dimensionless */
-    CANAL_R_CUBIC = 3   /* rp = r0 .. r3   R = sum r_i B_i,3(s), Bernstein in the normalized s */
+    CANAL_R_CONST = 0, /* rp = c          R = c */
+    CANAL_R_LINEAR =
+        1,            /* rp = r0 r1      R = r0 + (r1 - r0) s,  s = normalized parameter in [0,1] */
+    CANAL_R_COS = 2,  /* rp = b c k      R = b cos(k theta) + c, theta = the curve angle
+                         (ARC/ELLIPSE),  2 pi s (LINE/BEZIER); k dimensionless */
+    CANAL_R_CUBIC = 3 /* rp = r0 .. r3   R = sum r_i B_i,3(s), Bernstein in the normalized s */
 };
 
 /* Limits checked by canal_init. */
-#define CANAL_COORD_MAX CP_R(1.0e4)  /* |coordinate|, |radius| <= 10 m */
-#define CANAL_K_MAX CP_R(64.0)       /* |k| of the COS law */
-#define CANAL_SPAN_MAX CP_TWO_PI     /* |a1 - a0| <= one full turn */
+#define CANAL_COORD_MAX CP_R(1.0e4) /* |coordinate|, |radius| <= 10 m */
+#define CANAL_K_MAX CP_R(64.0)      /* |k| of the COS law */
+#define CANAL_SPAN_MAX CP_TWO_PI    /* |a1 - a0| <= one full turn */
 
 struct canal_cfg {
     uint8_t curve;  /* enum canal_curve_kind */
@@ -62,25 +64,25 @@ struct canal_cfg {
 /* The validated surface. Read-only after canal_init. */
 struct canal {
     uint8_t curve, radius;
-    int8_t dir;           /* +1, or -1 for a clockwise ARC/ELLIPSE (t = -angle) */
-    cp_real cp[8];        /* copy of the curve parameters */
-    cp_real rp[4];        /* copy of the radius parameters */
-    cp_real t0, t1;       /* parameter interval, t0 < t1 */
-    cp_real rmin, rmax;   /* exact min and max of R over [t0, t1], mm */
-    cp_real cmin;         /* min |C'(t)| over [t0, t1] (sampled and refined), mm per unit t */
-    cp_real inv_span;     /* 1 / (t1 - t0): d(normalized s)/dt */
-    cp_real dth;          /* d(theta)/dt of the COS law: dir (ARC/ELLIPSE) or 2 pi (LINE/BEZIER) */
-    cp_real kappa_c;      /* the constant signed curvature of C when kappa_const (ARC: dir/r, LINE: 0) */
-    uint8_t kappa_const;  /* 1 for ARC and LINE: then Lambda(t) = kappa_c (R(t) - R(t0)) exactly */
-    uint8_t k_int;        /* COS law on ARC/ELLIPSE with integer k in 1..8: cos/sin(k theta) by
-                             complex powers of the curve's own (cos, sin)(theta); else 0 */
+    int8_t dir;         /* +1, or -1 for a clockwise ARC/ELLIPSE (t = -angle) */
+    cp_real cp[8];      /* copy of the curve parameters */
+    cp_real rp[4];      /* copy of the radius parameters */
+    cp_real t0, t1;     /* parameter interval, t0 < t1 */
+    cp_real rmin, rmax; /* exact min and max of R over [t0, t1], mm */
+    cp_real cmin;       /* min |C'(t)| over [t0, t1] (sampled and refined), mm per unit t */
+    cp_real inv_span;   /* 1 / (t1 - t0): d(normalized s)/dt */
+    cp_real dth;        /* d(theta)/dt of the COS law: dir (ARC/ELLIPSE) or 2 pi (LINE/BEZIER) */
+    cp_real kappa_c; /* the constant signed curvature of C when kappa_const (ARC: dir/r, LINE: 0) */
+    uint8_t kappa_const; /* 1 for ARC and LINE: then Lambda(t) = kappa_c (R(t) - R(t0)) exactly */
+    uint8_t k_int;       /* COS law on ARC/ELLIPSE with integer k in 1..8: cos/sin(k theta) by
+                            complex powers of the curve's own (cos, sin)(theta); else 0 */
 };
 
 /* The 2-jet of C and R at t: everything the surface needs. */
 struct canal_jet {
-    cp_real x, y;     /* C(t), mm */
-    cp_real dx, dy;   /* C'(t) */
-    cp_real ddx, ddy; /* C''(t) */
+    cp_real x, y;       /* C(t), mm */
+    cp_real dx, dy;     /* C'(t) */
+    cp_real ddx, ddy;   /* C''(t) */
     cp_real r, dr, ddr; /* R(t), R'(t), R''(t) */
 };
 

@@ -38,7 +38,8 @@
 #define CP_MAX_SUBSTEPS 32
 #endif
 
-/* Maximum number of curvature lines (family 2) or circles (family 1) in one job. Integer (1-4096). */
+/* Maximum number of curvature lines (family 2) or circles (family 1) in one job. Integer (1-4096).
+ */
 #ifndef CP_MAX_LINES
 #define CP_MAX_LINES 256
 #endif

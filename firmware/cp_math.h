@@ -54,11 +54,12 @@ static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
     kf = (float)k;
     r = ((x - kf * p1) - kf * p2) - kf * p3;
     r2 = r * r;
-    sr = r + r * r2 * (-1.66666667e-1f +
-                       r2 * (8.33333333e-3f + r2 * (-1.98412698e-4f + r2 * 2.75573192e-6f)));
-    cr = 1.0f + r2 * (-0.5f + r2 * (4.16666667e-2f +
-                                     r2 * (-1.38888889e-3f +
-                                           r2 * (2.48015873e-5f + r2 * -2.75573192e-7f))));
+    sr = r + r * r2 *
+                 (-1.66666667e-1f +
+                  r2 * (8.33333333e-3f + r2 * (-1.98412698e-4f + r2 * 2.75573192e-6f)));
+    cr = 1.0f +
+         r2 * (-0.5f + r2 * (4.16666667e-2f + r2 * (-1.38888889e-3f +
+                                                    r2 * (2.48015873e-5f + r2 * -2.75573192e-7f))));
     switch ((uint32_t)k & 3u) {
     case 0u:
         *s = sr;

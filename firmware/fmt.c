@@ -57,8 +57,8 @@ int fmt_i32(char *buf, size_t cap, size_t *pos, int32_t v)
 
 int fmt_fixed(char *buf, size_t cap, size_t *pos, int32_t v, unsigned decimals)
 {
-    static const uint32_t pow10[10] = {1u, 10u, 100u, 1000u, 10000u, 100000u,
-                                       1000000u, 10000000u, 100000000u, 1000000000u};
+    static const uint32_t pow10[10] = {1u,      10u,      100u,      1000u,      10000u,
+                                       100000u, 1000000u, 10000000u, 100000000u, 1000000000u};
     uint32_t m, ip, fp, d;
     unsigned i;
     int err;

@@ -6,14 +6,14 @@
  *   CURVE BEZIER x0 y0 x1 y1 x2 y2 x3 y3
  *   RADIUS CONST c | RADIUS LINEAR r0 r1 | RADIUS COS b c k | RADIUS CUBIC r0 r1 r2 r3
  *   TOOL BALL r [TIP|CENTRE] | TOOL NONE
- *   LINES n u0 u1             family-2 lines, start angles u0..u1 (deg, |u| <= 180) on the first circle
- *   CIRCLES n u0 u1 [PATCH]   family-1 arcs at n evenly spaced t over contact angles u0..u1
+ *   LINES n u0 u1             family-2 lines, start angles u0..u1 (deg, |u| <= 180) on the first
+ * circle CIRCLES n u0 u1 [PATCH]   family-1 arcs at n evenly spaced t over contact angles u0..u1
  *                             (PATCH: between the family-2 lines that start at u0 and u1)
  *   STEPS m | TOL chord_um    fixed steps per line, or a chord tolerance (default TOL 1)
  *   FEED f                    mm/min on every G1 (0 = no F word)
  *   FORMAT GCODE | FRAMES
- *   RXBUF n                   the machine's RX buffer for character counting (32..1024, default 128)
- *   CHECKSUM ON | OFF         Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
+ *   RXBUF n                   the machine's RX buffer for character counting (32..1024, default
+ * 128) CHECKSUM ON | OFF         Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
  * Every command validates its arguments at once; the geometry is validated at RUN
  * (toolpath_init), each failure with its own wire status (cp_status.def).
  */
@@ -23,10 +23,7 @@
 #include "cp_status.h"
 #include "toolpath.h"
 
-enum job_format {
-    JOB_GCODE = 0,
-    JOB_FRAMES = 1
-};
+enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 
 #define JOB_HAVE_CURVE 0x01u
 #define JOB_HAVE_RADIUS 0x02u

@@ -16,8 +16,8 @@
 const char *cp_status_text(int code)
 {
     switch (code) {
-#define CP_STATUS(name, num, text) \
-    case num:                      \
+#define CP_STATUS(name, num, text)                                                                 \
+    case num:                                                                                      \
         return text;
 #include "cp_status.def"
 #undef CP_STATUS

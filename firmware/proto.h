@@ -70,11 +70,7 @@
 #error "PROTO_WINDOW must be in 1..64"
 #endif
 
-enum proto_state {
-    PROTO_IDLE = 0,
-    PROTO_RUN = 1,
-    PROTO_HOLD = 2
-};
+enum proto_state { PROTO_IDLE = 0, PROTO_RUN = 1, PROTO_HOLD = 2 };
 
 struct proto_cfg {
     const struct hal_uart *uart; /* the serial port; must stay valid while in use */
@@ -82,34 +78,34 @@ struct proto_cfg {
 
 struct proto {
     const struct hal_uart *uart;
-    char line[CP_LINE_MAX];   /* the line being assembled */
-    uint16_t line_len;        /* bytes in line[] */
-    uint8_t line_flags;       /* PROTO_LF_* of the current line */
-    uint8_t last_cr;          /* previous byte was '\r' (so a following '\n' is skipped) */
-    uint8_t rx[32];           /* bytes read from the HAL, not yet consumed */
-    uint8_t rx_len, rx_pos;   /* valid bytes in rx[], next to consume */
-    uint8_t tx[CP_TX_BUF];    /* bytes waiting for the HAL */
-    uint16_t tx_len, tx_pos;  /* bytes in tx[], next to send */
-    uint32_t lines_seen;      /* complete lines received (diagnostics) */
-    int err;                  /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
+    char line[CP_LINE_MAX];  /* the line being assembled */
+    uint16_t line_len;       /* bytes in line[] */
+    uint8_t line_flags;      /* PROTO_LF_* of the current line */
+    uint8_t last_cr;         /* previous byte was '\r' (so a following '\n' is skipped) */
+    uint8_t rx[32];          /* bytes read from the HAL, not yet consumed */
+    uint8_t rx_len, rx_pos;  /* valid bytes in rx[], next to consume */
+    uint8_t tx[CP_TX_BUF];   /* bytes waiting for the HAL */
+    uint16_t tx_len, tx_pos; /* bytes in tx[], next to send */
+    uint32_t lines_seen;     /* complete lines received (diagnostics) */
+    int err;                 /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
     /* job and run */
-    struct job job;           /* the job being assembled / run */
-    struct toolpath tp;       /* the validated toolpath of the current run */
-    uint8_t state;            /* enum proto_state */
-    uint8_t fmt;              /* enum job_format of the current run */
+    struct job job;            /* the job being assembled / run */
+    struct toolpath tp;        /* the validated toolpath of the current run */
+    uint8_t state;             /* enum proto_state */
+    uint8_t fmt;               /* enum job_format of the current run */
     uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */
     uint8_t ring[PROTO_RING];
-    uint16_t inflight;        /* GCODE: bytes of unacknowledged lines */
-    uint16_t resync;          /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
-    uint8_t retries;          /* FRAMES: consecutive timeouts */
-    uint8_t pend_len;         /* GCODE: bytes of the built, uncommitted line at tx[tx_len] */
-    uint32_t pend_idx;        /* GCODE: stream index of that line */
-    uint32_t start_k;         /* first point of the run (RESUME k) */
-    uint32_t next;            /* next stream item to send (GCODE line / FRAMES frame index) */
-    uint32_t acked;           /* FRAMES: items below are acknowledged; GCODE: lines acked */
-    uint32_t end;             /* stream items of the run */
-    uint32_t t_last;          /* ms of the last progress from the peer */
-    struct frame_rx frx;      /* FRAMES: decoder of the host's frames */
+    uint16_t inflight;   /* GCODE: bytes of unacknowledged lines */
+    uint16_t resync;     /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
+    uint8_t retries;     /* FRAMES: consecutive timeouts */
+    uint8_t pend_len;    /* GCODE: bytes of the built, uncommitted line at tx[tx_len] */
+    uint32_t pend_idx;   /* GCODE: stream index of that line */
+    uint32_t start_k;    /* first point of the run (RESUME k) */
+    uint32_t next;       /* next stream item to send (GCODE line / FRAMES frame index) */
+    uint32_t acked;      /* FRAMES: items below are acknowledged; GCODE: lines acked */
+    uint32_t end;        /* stream items of the run */
+    uint32_t t_last;     /* ms of the last progress from the peer */
+    struct frame_rx frx; /* FRAMES: decoder of the host's frames */
 };
 
 /* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or

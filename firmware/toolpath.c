@@ -21,10 +21,10 @@
 #include "toolpath.h"
 #include "cp_math.h"
 
-#define RICH_COARSE 64u /* Richardson estimate: coarse panel count over [t0, t1] */
-#define WALK_MAX_ROUNDS 4 /* step-count refinements from the measured sagitta */
+#define RICH_COARSE 64u      /* Richardson estimate: coarse panel count over [t0, t1] */
+#define WALK_MAX_ROUNDS 4    /* step-count refinements from the measured sagitta */
 #define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
-#define LINK_PROBES 16u /* regularity probes along each link arc */
+#define LINK_PROBES 16u      /* regularity probes along each link arc */
 #define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
 
 struct quad {
@@ -90,8 +90,8 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
 }
 
 /* Position emitted for a surface label at frame f (surface, tool centre or tip). */
-static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h,
-                       cp_real b, struct canal_point *out)
+static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b,
+                       struct canal_point *out)
 {
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
     canal_point(f, h, b, off, out);
@@ -176,7 +176,8 @@ static void label_between(const struct canal_frame *f, cp_real ha, cp_real ba, c
 }
 
 /* Angle between labels a and b at frame f, radians in [0, pi] (half-angle space x2). */
-static cp_real label_gap(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb, cp_real bb)
+static cp_real label_gap(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb,
+                         cp_real bb)
 {
     cp_real q = cp_sqrt(f->q2);
     cp_real ax = ha / q, ay = ba, bx = hb / q, by = bb;
@@ -623,9 +624,10 @@ static void quad_goto(struct toolpath *tp, uint32_t target, int back, struct can
 {
     struct quad q;
     uint32_t m = tp->substeps;
-    uint32_t last = 2u * m * (tp->mode == TOOLPATH_LINES
-                                  ? (uint32_t)tp->steps
-                                  : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * (tp->link + 1u) : 1u));
+    uint32_t last =
+        2u * m *
+        (tp->mode == TOOLPATH_LINES ? (uint32_t)tp->steps
+                                    : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * (tp->link + 1u) : 1u));
     quad_reset(&tp->surf, &q, j);
     if (!back) {
         quad_march(tp, &q, 0u, target / 2u, 1, tp->hp, j);
@@ -685,15 +687,15 @@ static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal
     tp->g_node = q.g;
 }
 
-static CP_ALWAYS_INLINE int finish(const struct toolpath *tp, const struct canal_point *cp, cp_real t, int line,
-                  uint32_t index, struct toolpath_pt *pt)
+/* Copy a computed point out, refusing a non-finite one. */
+static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int line,
+                                   uint32_t index, struct toolpath_pt *pt)
 {
     /* one test covers all six: a NaN or Inf anywhere makes the sum non-finite, and
      * finite components (|m| <= 1e4 mm, |n| <= 1) cannot overflow it */
     if (!cp_isfinite(cp->m.x + cp->m.y + cp->m.z + cp->n.x + cp->n.y + cp->n.z)) {
         return CP_ERR_NUMERIC;
     }
-    (void)tp;
     pt->p = cp->m;
     pt->n = cp->n;
     pt->t = t;
@@ -744,7 +746,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         al = tp->lab_a;
         bl = tp->lab_b;
         emit_point(tp, &f, al + tp->lam * bl, bl, &cp);
-        return finish(tp, &cp, t, (int)jl, i, pt);
+        return finish(&cp, t, (int)jl, i, pt);
     }
     /* link point r - steps (1..link) after line jl, at its end node */
     {
@@ -759,7 +761,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
                       (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);
         emit_point(tp, &f, hh, b2, &cp);
-        return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
+        return finish(&cp, t_at(tp, a, tp->hp), -1, kk, pt);
     }
 }
 
@@ -782,7 +784,7 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         bound_label(tp, tp->u1, &f, tp->lam, &ab, &bb);
         label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &hh, &b2);
         emit_point(tp, &f, hh, b2, &cp);
-        return finish(tp, &cp, t_at(tp, a, tp->hp), (int)c, i, pt);
+        return finish(&cp, t_at(tp, a, tp->hp), (int)c, i, pt);
     }
     {
         uint32_t kk = r - tp->steps;
@@ -791,7 +793,7 @@ static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
         canal_frame_pt(&j, &f);
         bound_label(tp, back ? tp->u0 : tp->u1, &f, tp->lam, &aa, &ba);
         emit_point(tp, &f, aa, ba, &cp);
-        return finish(tp, &cp, t_at(tp, a, tp->hp), -1, kk, pt);
+        return finish(&cp, t_at(tp, a, tp->hp), -1, kk, pt);
     }
 }
 

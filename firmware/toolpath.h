@@ -40,15 +40,19 @@ enum toolpath_mode {
 
 /* How u0, u1 label the family-2 lines. */
 enum toolpath_labels {
-    TOOLPATH_LABEL_ANGLE = 0, /* contact-frame start angle on the first circle, radians, |u| <= pi */
-    TOOLPATH_LABEL_LAMBDA = 1 /* w = lambda(t0) = q0 cot(u0/2), mm-free, |w| <= 1e4 (C is w = inf) */
+    /* contact-frame start angle on the first circle, radians, |u| <= pi */
+    TOOLPATH_LABEL_ANGLE = 0,
+    /* w = lambda(t0) = q0 cot(u0/2), dimensionless, |w| <= 1e4 (C itself is w = inf) */
+    TOOLPATH_LABEL_LAMBDA = 1
 };
 
 /* What bounds the circles of TOOLPATH_CIRCLES. */
 enum toolpath_span {
-    TOOLPATH_SPAN_LINES = 0, /* the family-2 lines that start at u0 and u1: the same patch as LINES */
-    TOOLPATH_SPAN_ANGLE = 1  /* the fixed contact-frame angles u0..u1 on every circle; links run
-                                along u = const (labels must be ANGLE) */
+    /* the family-2 lines that start at u0 and u1: the same patch as LINES */
+    TOOLPATH_SPAN_LINES = 0,
+    /* the fixed contact-frame angles u0..u1 on every circle; links run along u = const
+     * (labels must be ANGLE) */
+    TOOLPATH_SPAN_ANGLE = 1
 };
 
 /* Output of each point. */
@@ -96,18 +100,18 @@ struct toolpath {
     struct canal surf;
     uint8_t mode, output, labels, span;
     uint16_t n, steps, substeps, link;
-    int32_t lab_line;   /* line whose label is cached in lab_a, lab_b (-1: none) */
+    int32_t lab_line; /* line whose label is cached in lab_a, lab_b (-1: none) */
     cp_real lab_a, lab_b;
     cp_real u0, u1, tool_r;
-    cp_real hp;         /* half-panel width in t: output/node step = 2 substeps hp */
-    cp_real q0;         /* q at t0 (labels) */
-    cp_real r0;         /* R(t0): exact Lambda = kappa (R - r0) when the curvature of C is constant */
-    uint32_t count;     /* total points */
-    uint32_t k;         /* points emitted so far */
+    cp_real hp;     /* half-panel width in t: output/node step = 2 substeps hp */
+    cp_real q0;     /* q at t0 (labels) */
+    cp_real r0;     /* R(t0): exact Lambda = kappa (R - r0) when the curvature of C is constant */
+    uint32_t count; /* total points */
+    uint32_t k;     /* points emitted so far */
     /* quadrature state */
-    uint32_t node;      /* current node index of Lambda */
-    cp_real lam, comp;  /* Lambda at node, Kahan compensation */
-    cp_real g_node;     /* integrand g at node */
+    uint32_t node;     /* current node index of Lambda */
+    cp_real lam, comp; /* Lambda at node, Kahan compensation */
+    cp_real g_node;    /* integrand g at node */
 };
 
 /* Validate cfg, derive step counts, walk the patch once for regularity.

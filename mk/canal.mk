@@ -60,3 +60,8 @@ size: sizes
 ## guard-readme: the C example in README.md compiles and streams every point
 guard-readme:
 	$(Q)BUILD=$(BUILD) CC=$(CC) sh tools/readme_example.sh
+
+.PHONY: format
+## format: clang-format firmware/ (house style: .clang-format)
+format:
+	$(Q)clang-format -i firmware/*.c firmware/*.h
