@@ -33,20 +33,26 @@
 #include "cp_types.h"
 
 enum canal_curve_kind {
-    CANAL_LINE = 0, /* cp = x0 y0 x1 y1                       C(s) = P0 + s (P1 - P0), s in [0,1] */
-    CANAL_ARC =
-        1, /* cp = cx cy r a0 a1                     C = c + r (cos a, sin a), a from a0 to a1 */
-    CANAL_ELLIPSE = 2, /* cp = cx cy A B a0 a1                   C = c + (A cos a, B sin a) */
-    CANAL_BEZIER = 3   /* cp = x0 y0 x1 y1 x2 y2 x3 y3           cubic Bezier, s in [0,1] */
+    /* cp = x0 y0 x1 y1: C(s) = P0 + s (P1 - P0), s in [0,1] */
+    CANAL_LINE = 0,
+    /* cp = cx cy r a0 a1: C = c + r (cos a, sin a), a from a0 to a1 */
+    CANAL_ARC = 1,
+    /* cp = cx cy A B a0 a1: C = c + (A cos a, B sin a) */
+    CANAL_ELLIPSE = 2,
+    /* cp = x0 y0 x1 y1 x2 y2 x3 y3: cubic Bezier, s in [0,1] */
+    CANAL_BEZIER = 3
 };
 
 enum canal_radius_kind {
-    CANAL_R_CONST = 0, /* rp = c          R = c */
-    CANAL_R_LINEAR =
-        1,            /* rp = r0 r1      R = r0 + (r1 - r0) s,  s = normalized parameter in [0,1] */
-    CANAL_R_COS = 2,  /* rp = b c k      R = b cos(k theta) + c, theta = the curve angle
-                         (ARC/ELLIPSE),  2 pi s (LINE/BEZIER); k dimensionless */
-    CANAL_R_CUBIC = 3 /* rp = r0 .. r3   R = sum r_i B_i,3(s), Bernstein in the normalized s */
+    /* rp = c: R = c */
+    CANAL_R_CONST = 0,
+    /* rp = r0 r1: R = r0 + (r1 - r0) s, s = the normalized parameter in [0,1] */
+    CANAL_R_LINEAR = 1,
+    /* rp = b c k: R = b cos(k theta) + c, theta = the curve angle (ARC/ELLIPSE) or
+     * 2 pi s (LINE/BEZIER); k dimensionless */
+    CANAL_R_COS = 2,
+    /* rp = r0 .. r3: R = sum r_i B_i,3(s), Bernstein in the normalized s */
+    CANAL_R_CUBIC = 3
 };
 
 /* Limits checked by canal_init. */

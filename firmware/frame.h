@@ -25,10 +25,12 @@
 #define FRAME_OVERHEAD 6u
 
 enum frame_type {
-    FRAME_BEGIN = 0x01, /* u32 count, u32 first point, u16 n, u16 steps, u16 link, u8 mode */
-    FRAME_POINT =
-        0x02, /* u32 k, i32 x, y, z (0.1 um), i16 nx, ny, nz (1/32767), i16 line, u16 index */
-    FRAME_END = 0x03, /* u8 wire status (0 = complete), u32 points sent */
+    /* u32 count, u32 first point, u16 n, u16 steps, u16 link, u8 mode */
+    FRAME_BEGIN = 0x01,
+    /* u32 k, i32 x, y, z (0.1 um), i16 nx, ny, nz (1/32767), i16 line, u16 index */
+    FRAME_POINT = 0x02,
+    /* u8 wire status (0 = complete), u32 points sent */
+    FRAME_END = 0x03,
     FRAME_ACK = 0x81,
     FRAME_NAK = 0x82,
     FRAME_ABORT = 0x83,
