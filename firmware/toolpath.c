@@ -90,14 +90,21 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
 }
 
 /* Position emitted for a surface label at frame f (surface, tool centre or tip). */
-static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b,
-                       struct canal_point *out)
+static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct canal_frame *f,
+                                         cp_real h, cp_real b, struct canal_point *out)
 {
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
     canal_point(f, h, b, off, out);
     if (tp->output == TOOLPATH_OUT_TIP) {
         out->m.z -= tp->tool_r;
     }
+}
+
+/* The same, out of line for the init walks (flash). */
+static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b,
+                       struct canal_point *out)
+{
+    emit_inline(tp, f, h, b, out);
 }
 
 /* Is label (h, b) regular on the surface and (with a tool) on the tool-centre surface? */
@@ -745,7 +752,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         }
         al = tp->lab_a;
         bl = tp->lab_b;
-        emit_point(tp, &f, al + tp->lam * bl, bl, &cp);
+        emit_inline(tp, &f, al + tp->lam * bl, bl, &cp); /* the streaming hot path */
         return finish(&cp, t, (int)jl, i, pt);
     }
     /* link point r - steps (1..link) after line jl, at its end node */
