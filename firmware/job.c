@@ -36,6 +36,24 @@ void job_init(struct job *j)
     j->checksum = 0;
 }
 
+int job_is_command(const char *line, size_t len)
+{
+    static const char *const kw[13] = {"CURVE",    "RADIUS", "TOOL",  "LINES",  "CIRCLES",
+                                       "STEPS",    "TOL",    "FEED",  "FORMAT", "RXBUF",
+                                       "CHECKSUM", "RUN",    "RESUME"};
+    size_t n = 0;
+    unsigned i;
+    while (n < len && line[n] != ' ') {
+        n++;
+    }
+    for (i = 0; i < 13u; i++) {
+        if (parse_is(line, n, kw[i])) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int job_status_of(int err)
 {
     switch (err) {
@@ -288,7 +306,7 @@ int job_command(struct job *j, const char *line, size_t len)
         if (s != CP_ST_OK) {
             return s;
         }
-        if (v < CP_R(0.0) || v > JOB_FEED_MAX) {
+        if (v < CP_R(0.0) || v > JOB_FEED_MAX || (v > CP_R(0.0) && v < JOB_FEED_MIN)) {
             return CP_ST_OUT_OF_RANGE;
         }
         j->feed = v;

@@ -30,9 +30,10 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 #define JOB_HAVE_RASTER 0x04u
 #define JOB_HAVE_ALL 0x07u
 
-#define JOB_RXBUF_MIN 32u
+#define JOB_RXBUF_MIN 96u /* >= the longest stream line (proto.h PROTO_GCODE_MAX) */
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
+#define JOB_FEED_MIN CP_R(0.05) /* smallest non-zero FEED: F is printed with 1 decimal */
 
 /* Returned by job_command for a line that is not a job command (e.g. RUN, $I). */
 #define JOB_NOT_MINE (-1)
@@ -52,6 +53,9 @@ void job_init(struct job *j);
 /* Apply one command line (trimmed, no terminator). Returns a wire status
  * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE. */
 int job_command(struct job *j, const char *line, size_t len);
+
+/* 1 if the line starts with a job command keyword (CURVE ... CHECKSUM, RUN, RESUME). */
+int job_is_command(const char *line, size_t len);
 
 /* Wire status of an enum cp_err returned by toolpath_init. */
 int job_status_of(int cp_err);

@@ -57,6 +57,9 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     p->t_last = 0;
     p->pend_len = 0;
     p->pend_idx = 0;
+    p->hdr = 1;
+    p->frames_tail = 0;
+    p->tail_skip = 0;
     p->tp.count = 0;
     frame_rx_init(&p->frx);
     return CP_OK;
@@ -68,32 +71,27 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
  *-------------------------------------------------------------------------*/
 static size_t tx_room(struct proto *p)
 {
-    if (p->tx_pos > 0u) { /* compact the unsent tail (and a pending line) to the front */
+    if (p->tx_pos > 0u) { /* compact the unsent tail to the front */
         uint16_t i, k = (uint16_t)(p->tx_len - p->tx_pos);
-        uint16_t all = (uint16_t)(k + p->pend_len);
-        for (i = 0; i < all; i++) {
+        for (i = 0; i < k; i++) {
             p->tx[i] = p->tx[p->tx_pos + i];
         }
         p->tx_len = k;
         p->tx_pos = 0;
     }
-    return (size_t)(CP_TX_BUF - p->tx_len - p->pend_len);
+    return (size_t)(CP_TX_BUF - p->tx_len);
 }
 
 static void tx_str(struct proto *p, const char *s)
 {
-    size_t pos;
-    p->pend_len = 0; /* text overwrites a pending (uncommitted) stream line */
-    pos = p->tx_len;
+    size_t pos = p->tx_len;
     (void)fmt_str((char *)p->tx, sizeof p->tx, &pos, s);
     p->tx_len = (uint16_t)pos;
 }
 
 static void tx_u32(struct proto *p, uint32_t v)
 {
-    size_t pos;
-    p->pend_len = 0;
-    pos = p->tx_len;
+    size_t pos = p->tx_len;
     (void)fmt_u32((char *)p->tx, sizeof p->tx, &pos, v);
     p->tx_len = (uint16_t)pos;
 }
@@ -140,8 +138,9 @@ static void reply_report(struct proto *p)
     uint32_t sent = 0;
     tx_str(p, names[p->state]);
     if (p->state != PROTO_IDLE) {
-        uint32_t items = p->fmt == JOB_GCODE ? p->next : (p->next > 0u ? p->next - 1u : 0u);
-        uint32_t npts = p->end - (p->fmt == JOB_GCODE ? 1u : 2u);
+        uint32_t skip = p->fmt == JOB_GCODE ? p->hdr : 1u; /* header lines, or BEGIN */
+        uint32_t items = p->next > skip ? p->next - skip : 0u;
+        uint32_t npts = p->end - (p->fmt == JOB_GCODE ? p->hdr : 2u);
         sent = items > npts ? npts : items;
         {
             uint32_t k = p->start_k + sent, block = (uint32_t)p->tp.steps + 1u + p->tp.link;
@@ -168,7 +167,6 @@ static void run_finish(struct proto *p, int status)
         uint8_t pl[5], buf[16];
         int n;
         uint32_t sent = p->next > 0u ? p->next - 1u : 0u; /* frames after BEGIN */
-        p->pend_len = 0;
         pl[0] = (uint8_t)status;
         frame_put_u32(pl + 1, sent < p->end - 2u ? sent : p->end - 2u); /* points only */
         n = frame_encode((uint8_t)p->next, FRAME_END, pl, sizeof pl, buf, sizeof buf);
@@ -182,6 +180,7 @@ static void run_finish(struct proto *p, int status)
         }
     }
     reply_status(p, status);
+    p->frames_tail = (uint8_t)(p->fmt == JOB_FRAMES);
     p->state = PROTO_IDLE;
 }
 
@@ -208,7 +207,10 @@ static int run_start(struct proto *p, uint32_t first)
     p->start_k = first;
     p->next = 0;
     p->acked = 0;
-    p->end = p->fmt == JOB_GCODE ? npts + 1u : npts + 2u;
+    /* GCODE header: "G21 G90 G17", preceded by "M110 N0" with checksums so that a
+     * Marlin-style machine numbers this run's lines from N1 whatever it saw before */
+    p->hdr = (uint8_t)(p->job.checksum ? 2u : 1u);
+    p->end = p->fmt == JOB_GCODE ? npts + p->hdr : npts + 2u;
     p->ring_head = 0;
     p->ring_n = 0;
     p->inflight = 0;
@@ -251,21 +253,25 @@ static int32_t quantize(cp_real v, cp_real scale)
     return (int32_t)cp_floor(v * scale + CP_R(0.5));
 }
 
-/* Build GCODE stream line `idx` (0 = preamble) into out; returns its length or < 0. */
+/* Build GCODE stream line `idx` into out; returns its length or < 0. The stream is
+ * hdr header lines, then one G1 per point. With checksums every line is N<idx>:
+ * N0 M110 N0, N1 G21 G90 G17, N2 the first point... */
 static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
 {
     size_t pos = 0;
     int err = CP_OK;
     if (p->job.checksum) {
         err |= fmt_str(out, cap, &pos, "N");
-        err |= fmt_u32(out, cap, &pos, idx + 1u);
+        err |= fmt_u32(out, cap, &pos, idx);
         err |= fmt_str(out, cap, &pos, " ");
     }
-    if (idx == 0u) {
+    if (idx + 2u == p->hdr) {
+        err |= fmt_str(out, cap, &pos, "M110 N0");
+    } else if (idx + 1u == p->hdr) {
         err |= fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
         struct toolpath_pt pt;
-        int e = point_at(p, p->start_k + idx - 1u, &pt);
+        int e = point_at(p, p->start_k + idx - p->hdr, &pt);
         if (e != CP_OK) {
             return e;
         }
@@ -335,7 +341,7 @@ static int run_emit(struct proto *p)
 {
     uint32_t now = hal_uart_now_ms(p->uart);
     int n;
-    if (tx_room(p) + p->pend_len < PROTO_REPLY_MAX) {
+    if (tx_room(p) < PROTO_REPLY_MAX) {
         return 0; /* every path below may append a whole burst */
     }
     if (p->fmt == JOB_GCODE) {
@@ -354,10 +360,10 @@ static int run_emit(struct proto *p)
             }
             return 0;
         } else if (p->state == PROTO_RUN && p->ring_n < PROTO_RING) {
-            /* the line is built once into the tx tail (uncommitted) and waits there
-             * until the machine's RX buffer has room for it */
+            /* the line is built once into pend[] and waits there until the machine's
+             * RX buffer has room for it (text replies meanwhile do not disturb it) */
             if (p->pend_len == 0u || p->pend_idx != p->next) {
-                n = gcode_line(p, p->next, (char *)p->tx + p->tx_len, PROTO_REPLY_MAX);
+                n = gcode_line(p, p->next, p->pend, sizeof p->pend);
                 if (n < 0) {
                     run_finish(p, CP_ST_NUMERIC);
                     return 1;
@@ -367,6 +373,10 @@ static int run_emit(struct proto *p)
             }
             n = p->pend_len;
             if ((uint32_t)p->inflight + (uint32_t)n <= p->job.rxbuf) {
+                int i;
+                for (i = 0; i < n; i++) {
+                    p->tx[p->tx_len + i] = (uint8_t)p->pend[i];
+                }
                 p->pend_len = 0;
                 p->tx_len = (uint16_t)(p->tx_len + n);
                 p->ring[(p->ring_head + p->ring_n) % PROTO_RING] = (uint8_t)n;
@@ -392,7 +402,7 @@ static int run_emit(struct proto *p)
     }
     if (p->state == PROTO_RUN && p->acked < p->next && (uint32_t)(now - p->t_last) > PROTO_RTO_MS) {
         /* go-back-N: resend everything from the oldest unacknowledged frame */
-        if (++p->retries > PROTO_MAX_RETRIES) {
+        if (++p->retries >= PROTO_MAX_RETRIES) {
             run_finish(p, CP_ST_LINK_ERROR);
             return 1;
         }
@@ -511,14 +521,20 @@ static int machine_line(struct proto *p)
         if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
             p->t_last = hal_uart_now_ms(p->uart);
         }
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && !p->resync &&
-            parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
-            n >= 1u && n - 1u < p->next) {
-            /* regenerate from line n once the machine has gone quiet (run_emit);
-             * later Resend: requests for lines already in flight are ignored */
-            p->next = n - 1u;
-            p->resync = 1;
-            p->pend_len = 0;
+        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && !p->resync) {
+            if (parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
+                n < p->next) {
+                /* regenerate from line Nn (stream index n) once the machine has gone
+                 * quiet (run_emit); later Resend: requests for lines already in flight
+                 * are ignored */
+                p->next = n;
+                p->resync = 1;
+                p->pend_len = 0;
+            } else {
+                /* a line we never sent: the machine counts differently (no M110, or a
+                 * garbled request); its oks cannot be trusted - stop */
+                run_finish(p, CP_ST_PEER_ERROR);
+            }
         }
         return 1;
     }
@@ -530,6 +546,9 @@ static void exec_line(struct proto *p)
     uint16_t a = 0, b = p->line_len;
     int st;
     p->lines_seen++;
+    if (p->state != PROTO_IDLE && (p->line_flags & (PROTO_LF_OVERFLOW | PROTO_LF_BADCHAR))) {
+        return; /* machine chatter during a run: no reply into the stream */
+    }
     if (p->line_flags & PROTO_LF_OVERFLOW) {
         reply_status(p, CP_ST_LINE_TOO_LONG);
         return;
@@ -567,9 +586,14 @@ static void exec_line(struct proto *p)
         return;
     }
     if (p->state != PROTO_IDLE) {
-        reply_status(p, CP_ST_BUSY);
+        /* during a run the peer is the machine: a job command gets error:7, any other
+         * line (echo:, busy:, [MSG:...]) is chatter and gets no reply in the stream */
+        if (job_is_command(p->line, p->line_len)) {
+            reply_status(p, CP_ST_BUSY);
+        }
         return;
     }
+    p->frames_tail = 0; /* a text command: late frames of the last run are over */
     if (parse_is(p->line, p->line_len, "RUN")) {
         st = run_start(p, 0u);
         if (st != CP_ST_OK) {
@@ -641,6 +665,18 @@ static void feed(struct proto *p, uint8_t c)
         }
         return;
     }
+    if (p->frames_tail) {
+        /* after a FRAMES run the host may still send late 6-byte ACK/NAK frames: they
+         * start with 0x06, which never occurs in text; skip them whole */
+        if (p->tail_skip > 0u) {
+            p->tail_skip--;
+            return;
+        }
+        if (c == FRAME_MIN) {
+            p->tail_skip = FRAME_MIN - 1u;
+            return;
+        }
+    }
     if (realtime(p, c)) {
         return;
     }
@@ -687,11 +723,6 @@ int proto_poll(struct proto *p)
         p->tx_pos = (uint16_t)(p->tx_pos + (uint16_t)n);
         moved |= (n > 0);
         if (p->tx_pos == p->tx_len) {
-            /* all sent: rewind, carrying a built but uncommitted line along */
-            uint16_t i;
-            for (i = 0; i < p->pend_len; i++) {
-                p->tx[i] = p->tx[p->tx_len + i];
-            }
             p->tx_pos = 0;
             p->tx_len = 0;
         }

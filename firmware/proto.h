@@ -60,6 +60,12 @@
 #ifndef PROTO_RESYNC_MS
 #define PROTO_RESYNC_MS 100u
 #endif
+/* GCODE: the longest stream line, bytes: "N<n> G1 X.. Y.. Z.. F..*<cs>\n" with 4 decimals
+ * per coordinate stays under 90. RXBUF may not be smaller (JOB_RXBUF_MIN). */
+#define PROTO_GCODE_MAX 96
+#if PROTO_GCODE_MAX > JOB_RXBUF_MIN
+#error "a stream line must fit an empty machine RX buffer (JOB_RXBUF_MIN)"
+#endif
 /* GCODE: lines in flight are tracked in a ring of this many entries. */
 #define PROTO_RING 64u
 
@@ -98,14 +104,18 @@ struct proto {
     uint16_t inflight;   /* GCODE: bytes of unacknowledged lines */
     uint16_t resync;     /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
     uint8_t retries;     /* FRAMES: consecutive timeouts */
-    uint8_t pend_len;    /* GCODE: bytes of the built, uncommitted line at tx[tx_len] */
+    uint8_t pend_len;    /* GCODE: bytes of the built line in pend[], waiting for RXBUF room */
+    uint8_t hdr;         /* GCODE: header lines before the points (1, or 2 with CHECKSUM) */
+    uint8_t frames_tail; /* the last run was FRAMES: late ACK/NAK frames may still arrive */
+    uint8_t tail_skip;   /* bytes left of such a late 6-byte frame (never fed as text) */
     uint32_t pend_idx;   /* GCODE: stream index of that line */
-    uint32_t start_k;    /* first point of the run (RESUME k) */
-    uint32_t next;       /* next stream item to send (GCODE line / FRAMES frame index) */
-    uint32_t acked;      /* FRAMES: items below are acknowledged; GCODE: lines acked */
-    uint32_t end;        /* stream items of the run */
-    uint32_t t_last;     /* ms of the last progress from the peer */
-    struct frame_rx frx; /* FRAMES: decoder of the host's frames */
+    char pend[PROTO_GCODE_MAX]; /* GCODE: the next stream line, built once */
+    uint32_t start_k;           /* first point of the run (RESUME k) */
+    uint32_t next;              /* next stream item to send (GCODE line / FRAMES frame index) */
+    uint32_t acked;             /* FRAMES: items below are acknowledged; GCODE: lines acked */
+    uint32_t end;               /* stream items of the run */
+    uint32_t t_last;            /* ms of the last progress from the peer */
+    struct frame_rx frx;        /* FRAMES: decoder of the host's frames */
 };
 
 /* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or

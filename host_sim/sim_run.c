@@ -297,6 +297,13 @@ static void run_machine_line(struct run *u, char *s, unsigned mlen)
             ok = *e == '\0' && star[1] >= '0' && star[1] <= '9' && cs == want &&
                  strchr(s, ' ') != NULL && strchr(s, ' ') < star;
         }
+        if (ok && strncmp(strchr(s, ' ') + 1, "M110 N", 6) == 0) {
+            /* Marlin: M110 N<v> (accepted whatever its own N) sets the line number */
+            u->expect_n = (uint32_t)strtoul(strchr(s, ' ') + 7, NULL, 10) + 1u;
+            u->resend_wait = 0;
+            run_queue(u, "ok\n", 3, mlen);
+            return;
+        }
         if (!ok || nn != u->expect_n) {
             if (!ok) {
                 r->bad_lines++;

@@ -635,18 +635,15 @@ int test_property_random_invalid(void)
 
 /* ------------------------------------------------------------ open finding F3 */
 
-/* Reproducer of finding F3 (docs/HARDENING.md), NOT in tests.def until the fix:
- * a G-code line built while the machine's buffer is full waits uncommitted at
- * tx[tx_len..]; when text (here a '?' report) is flushed completely, proto_poll
- * resets tx_len to 0 without moving that line, and the next "ok" commits the
- * stale bytes tx[0..n) instead: the machine gets "<Run|P:1/153>\nG1 X9.7619 Y0".
- * Register with TEST(property_repro_f3) once proto.c is fixed. */
+/* Regression test of finding F3 (docs/HARDENING.md, fixed): a G-code line built while
+ * the machine's buffer is full waits for room; a text reply (here a '?' report) sent
+ * meanwhile must not corrupt it (it once went out as "<Run|P:1/153>\nG1 X9.7619 Y0"). */
 int test_property_repro_f3(void);
 
 int test_property_repro_f3(void)
 {
     static const char *const job[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",
-                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 32", "RUN"};
+                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 96", "RUN"};
     struct proto_cfg cfg;
     unsigned i;
     hal_mem_init(&pm, &pu);
@@ -660,14 +657,15 @@ int test_property_repro_f3(void)
     for (i = 0; i < 20u; i++) {
         (void)proto_poll(&pp);
     }
-    /* preamble (12 bytes) in flight; the first G1 line (27 bytes) does not fit RXBUF 32 */
+    /* preamble (12 bytes) and three G1 lines (27 bytes each) in flight: the fourth does
+     * not fit RXBUF 96 and waits */
     pm.out_len = 0;
     (void)hal_mem_feed_str(&pm, "?");
     (void)proto_poll(&pp); /* report staged, the G1 line built behind it */
     (void)proto_poll(&pp); /* report flushed */
     CHECK(pm.out_len > 0 && pm.out[0] == '<');
     pm.out_len = 0;
-    (void)hal_mem_feed_str(&pm, "ok\n"); /* the machine frees the preamble */
+    (void)hal_mem_feed_str(&pm, "ok\nok\n"); /* the machine frees preamble and a line */
     for (i = 0; i < 3u; i++) {
         (void)proto_poll(&pp);
     }

@@ -38,13 +38,20 @@ static void rx_drain(struct hal_uart_cmsdk *s)
     MPS2_UART0_CTRL |= MPS2_UART_CTRL_RXIE;
 }
 
-/* Fold the TIMER0 ticks elapsed since the last update into ms. Exact as long as
- * it runs at least once per wrap (171.8 s); the wrap ISR guarantees that.
+/* TIMER0 reloads every TIMER_PERIOD ticks (10 ms): its interrupt wakes the main loop
+ * from WFI, so the protocol's timeouts (resend quiet time, FRAMES retransmission, peer
+ * timeout) run on time even when the line is silent. */
+#define TIMER_PERIOD (TICKS_PER_MS * 10u)
+
+/* Fold the TIMER0 ticks elapsed since the last update into ms. Exact as long as it
+ * runs at least once per period (10 ms): the period ISR guarantees that, and the
+ * PRIMASK sections that may delay it are a few instructions long.
  * Runs with PRIMASK set or in the TIMER0 ISR. */
 static void time_update(struct hal_uart_cmsdk *s)
 {
     uint32_t now = MPS2_TIMER0_VALUE;
-    uint32_t delta = s->tick_last - now; /* down-counter; modulo 2^32 over a wrap */
+    /* down-counter from TIMER_PERIOD - 1 to 0, then reload: one wrap at most */
+    uint32_t delta = now <= s->tick_last ? s->tick_last - now : s->tick_last + (TIMER_PERIOD - now);
     s->tick_last = now;
     s->ms += delta / TICKS_PER_MS;
     s->tick_frac += delta % TICKS_PER_MS;
@@ -136,8 +143,8 @@ void hal_uart_cmsdk_init(struct hal_uart_cmsdk *s, struct hal_uart *u)
     s->ms = 0u;
 
     MPS2_TIMER0_CTRL = 0u;
-    MPS2_TIMER0_RELOAD = 0xFFFFFFFFu;
-    MPS2_TIMER0_VALUE = 0xFFFFFFFFu;
+    MPS2_TIMER0_RELOAD = TIMER_PERIOD - 1u;
+    MPS2_TIMER0_VALUE = TIMER_PERIOD - 1u;
     MPS2_TIMER0_INTSTATUS = 1u;
     MPS2_TIMER0_CTRL = MPS2_TIMER_CTRL_EN | MPS2_TIMER_CTRL_IE;
     s->tick_last = MPS2_TIMER0_VALUE;

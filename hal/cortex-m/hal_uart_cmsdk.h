@@ -10,9 +10,9 @@
  * TX is non-blocking: write() fills the 1-byte holding register while TXFULL is
  * clear and returns the bytes accepted (0 when TXFULL). A short write arms the
  * TX interrupt (IRQ 1), which only wakes the sleeping main loop.
- * now_ms() extends the 32-bit TIMER0 down-counter (25 MHz, wraps every 171.8 s)
- * in software; the TIMER0 wrap interrupt (IRQ 8) keeps it exact even if nobody
- * calls now_ms() for longer than one wrap.
+ * now_ms() counts TIMER0 (25 MHz, reloaded every 10 ms) in software; its period
+ * interrupt (IRQ 8) keeps the count exact and wakes the main loop from WFI, so the
+ * protocol's timeouts run on time while the line is silent.
  *
  * Single instance: the ISRs reach the state through one file-scope pointer, set
  * by hal_uart_cmsdk_init(). All ISRs are a few dozen instructions and use only

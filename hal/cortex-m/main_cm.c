@@ -3,7 +3,7 @@
  *
  * Owns the single protocol engine and the UART0 port (file-scope state is
  * allowed in hal/ only). Loop: proto_poll() until it reports idle, then sleep
- * in WFI until the next interrupt (UART RX/TX or the TIMER0 wrap). The firmware
+ * in WFI until the next interrupt (UART RX/TX, or the 10 ms TIMER0 period). The firmware
  * sends nothing until the host speaks (see proto.h).
  *
  * Run it on QEMU with UART0 on a host-created pty (host_sim does this):
