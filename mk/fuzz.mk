@@ -3,8 +3,10 @@
 #
 # Included by the top Makefile (uses its BUILD, CC, CLANG, WARN, FPFLAGS, INC, FW_SRC,
 # TEST_SRC, Q). Build trees:
-#   $(BUILD)/fuzz/      firmware + tests/hal_mem.c with -fsanitize=fuzzer-no-link,address,undefined,
-#                       one binary per tests/fuzz_<t>.c: fuzz_cmd fuzz_num fuzz_frame fuzz_run
+#   $(BUILD)/fuzz/      firmware with -fsanitize=fuzzer-no-link,address,undefined -O2, harness
+#                       (tests/fuzz_<t>.c, tests/hal_mem.c) with address,undefined only; one
+#                       binary per target: fuzz_cmd fuzz_num fuzz_frame fuzz_run (shipped limits)
+#   $(BUILD)/fuzz-small/ the same with small compile-time limits (FUZZ_SMALL_DEFS), `make fuzz`
 #   $(BUILD)/asan/      the unit tests (float build) with -fsanitize=address,undefined
 # Seeds: tests/corpus/<t>/ (read only: libFuzzer writes new inputs to $(BUILD)/fuzz/corpus/<t>).
 
@@ -13,19 +15,47 @@ FUZZ_SECONDS ?= 60
 FUZZ_RUNS    ?= 20000
 # fuzz_run drives a whole FRAMES session per input (~600 exec/s): fewer runs keep
 # fuzz-check under a minute.
-FUZZ_RUNS_RUN ?= 8000
+FUZZ_RUNS_RUN ?= 20000
 FUZZ_JOBS    ?= 1
 FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all
-FUZZ_CFLAGS  := -std=c99 -O1 -g -fno-omit-frame-pointer $(FPFLAGS) $(INC) $(FUZZ_SAN)
+FUZZ_CFLAGS  := -std=c99 -g -fno-omit-frame-pointer $(FPFLAGS) $(INC) $(FUZZ_SAN)
+# Firmware objects at -O2 (the image is built -O2/-Os too; -O1 only cost speed).
+# Harness objects (tests/fuzz_<t>.c, tests/hal_mem.c) carry no coverage
+# instrumentation: ASan/UBSan only. Their branches mirror the firmware's and only
+# slowed every poll (trace-cmp hooks on each loop bound); the firmware, including
+# frame.c used by the harness to decode, keeps full coverage + trace-cmp.
+# Comparison tracing (trace-cmp, the fuzzer's hints for magic values) is left out of
+# the pure arithmetic of canal.c and cp_math.c, where every compare is of computed
+# values, never of input bytes, and the hooks cost half the run time; their edge
+# coverage stays. frame_crc16 has no coverage at all (its 8 branches per byte are
+# data bits, not paths). Sanitizers stay on everywhere.
+FUZZ_FW_OPT  ?= -O2
+FUZZ_H_OPT   ?= -O2
+FUZZ_NOCMP   := canal cp_math
 # FUZZ_STRICT=1 (default): fail on every finding, F1 and F2 included (fixed;
 # docs/HARDENING.md). FUZZ_STRICT= tolerates those two, for bisecting old trees.
 FUZZ_STRICT  ?= 1
-FUZZ_DIR     := $(BUILD)/fuzz$(if $(FUZZ_STRICT),,-lenient)
 FUZZ_CFLAGS  += $(if $(FUZZ_STRICT),-DFUZZ_STRICT=1)
-FUZZ_FW_OBJ  := $(patsubst firmware/%.c,$(FUZZ_DIR)/fw/%.o,$(FW_SRC)) $(FUZZ_DIR)/tests/hal_mem.o
+# Two configurations, each its own tree:
+#   full   $(BUILD)/fuzz        the shipped compile-time limits. fuzz-check uses it.
+#   small  $(BUILD)/fuzz-small  CP_MAX_STEPS=64, CP_MAX_LINES=8 (CP_MAX_LINK stays 64:
+#          the paper job needs 15-50 link points),
+#          PROTO_WINDOW=8: every job is at most a few hundred points, so a run ends
+#          inside the poll budget and ~10x more inputs per second reach the end of a
+#          run, the resume/abort paths and the $I check. Jobs beyond the limits are
+#          rejected at RUN/command time with their documented codes (error:14, 17),
+#          which the harness checks like any reply. Default of `make fuzz`.
+FUZZ_CONF    ?= small
+FUZZ_SMALL_DEFS := -DCP_MAX_STEPS=64 -DCP_MAX_LINES=8 -DPROTO_WINDOW=8u
+FUZZ_SFX     := $(if $(FUZZ_STRICT),,-lenient)
+FUZZ_DIR     := $(BUILD)/fuzz$(FUZZ_SFX)
+FUZZ_SDIR    := $(BUILD)/fuzz-small$(FUZZ_SFX)
+FUZZ_LDIR    := $(if $(filter small,$(FUZZ_CONF)),$(FUZZ_SDIR),$(FUZZ_DIR))
 FUZZ_BINS    := $(patsubst %,$(FUZZ_DIR)/fuzz_%,$(FUZZ_TARGETS))
+FUZZ_SBINS   := $(patsubst %,$(FUZZ_SDIR)/fuzz_%,$(FUZZ_TARGETS))
+FUZZ_LBINS   := $(patsubst %,$(FUZZ_LDIR)/fuzz_%,$(FUZZ_TARGETS))
 # libFuzzer options of every run: no leak check (no allocation in the firmware),
-# a hang of one input > 10 s is a failure (-timeout), crashes go to $(FUZZ_DIR)/artifacts.
+# a hang of one input > 10 s is a failure (-timeout), crashes go to <tree>/artifacts.
 FUZZ_OPTS    := -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -detect_leaks=0
 
 ASAN_CC     ?= $(CLANG)
@@ -36,26 +66,52 @@ ASAN_OBJ    := $(patsubst firmware/%.c,$(ASAN_DIR)/fw/%.o,$(FW_SRC)) \
                $(patsubst tests/%.c,$(ASAN_DIR)/tests/%.o,$(TEST_SRC))
 
 .PHONY: fuzz fuzz-build fuzz-check unit-asan
-.SECONDARY: $(FUZZ_FW_OBJ)
+
+# One fuzz tree: $(1) directory, $(2) extra -D flags. Firmware objects: coverage
+# (fuzzer-no-link) + sanitizers; harness objects: sanitizers only.
+define FUZZ_TREE
+$(1)/fw/%.o: firmware/%.c $(1)/cov-ignore.txt
+	@mkdir -p $$(@D)
+	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) $(2) $$(FUZZ_FW_OPT) -fsanitize=fuzzer-no-link \
+	    -fsanitize-coverage-ignorelist=$(1)/cov-ignore.txt \
+	    $$(if $$(filter $$(FUZZ_NOCMP),$$*),-fno-sanitize-coverage=trace-cmp) -MMD -MP -c $$< -o $$@
+
+$(1)/cov-ignore.txt:
+	@mkdir -p $$(@D)
+	$$(Q)echo 'fun:frame_crc16' > $$@
+
+$(1)/tests/%.o: tests/%.c
+	@mkdir -p $$(@D)
+	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) $(2) $$(FUZZ_H_OPT) -MMD -MP -c $$< -o $$@
+
+$(1)/fuzz_%: $(1)/tests/fuzz_%.o $(patsubst firmware/%.c,$(1)/fw/%.o,$(FW_SRC)) $(1)/tests/hal_mem.o
+	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) -fsanitize=fuzzer -o $$@ $$^ -lm
+
+.SECONDARY: $(patsubst firmware/%.c,$(1)/fw/%.o,$(FW_SRC)) $(1)/tests/hal_mem.o \
+            $(patsubst %,$(1)/tests/fuzz_%.o,$(FUZZ_TARGETS))
+-include $(wildcard $(1)/fw/*.d $(1)/tests/*.d)
+endef
+$(eval $(call FUZZ_TREE,$(FUZZ_DIR),))
+$(eval $(call FUZZ_TREE,$(FUZZ_SDIR),$(FUZZ_SMALL_DEFS)))
 
 ##
-## fuzz: every libFuzzer target for FUZZ_SECONDS (default 60) each; new inputs in build/fuzz/corpus
-fuzz: $(FUZZ_BINS)
+## fuzz: every libFuzzer target for FUZZ_SECONDS (default 60) each, FUZZ_CONF=small (default) or full; new inputs in <tree>/corpus
+fuzz: $(FUZZ_LBINS)
 	$(Q)fail=0; for t in $(FUZZ_TARGETS); do \
-	    mkdir -p $(FUZZ_DIR)/corpus/$$t $(FUZZ_DIR)/artifacts; \
-	    echo "== fuzz_$$t ($(FUZZ_SECONDS) s)"; \
-	    $(FUZZ_DIR)/fuzz_$$t $(FUZZ_OPTS) -max_total_time=$(FUZZ_SECONDS) -jobs=$(FUZZ_JOBS) \
-	        -workers=$(FUZZ_JOBS) -artifact_prefix=$(FUZZ_DIR)/artifacts/$$t- \
-	        $(FUZZ_DIR)/corpus/$$t tests/corpus/$$t > $(FUZZ_DIR)/fuzz_$$t.log 2>&1 \
-	        || { fail=1; echo "fuzz_$$t: FAILED (log $(FUZZ_DIR)/fuzz_$$t.log)"; tail -40 $(FUZZ_DIR)/fuzz_$$t.log; }; \
+	    mkdir -p $(FUZZ_LDIR)/corpus/$$t $(FUZZ_LDIR)/artifacts; \
+	    echo "== fuzz_$$t ($(FUZZ_CONF), $(FUZZ_SECONDS) s)"; \
+	    $(FUZZ_LDIR)/fuzz_$$t $(FUZZ_OPTS) -max_total_time=$(FUZZ_SECONDS) -jobs=$(FUZZ_JOBS) \
+	        -workers=$(FUZZ_JOBS) -artifact_prefix=$(FUZZ_LDIR)/artifacts/$$t- \
+	        $(FUZZ_LDIR)/corpus/$$t tests/corpus/$$t > $(FUZZ_LDIR)/fuzz_$$t.log 2>&1 \
+	        || { fail=1; echo "fuzz_$$t: FAILED (log $(FUZZ_LDIR)/fuzz_$$t.log)"; tail -40 $(FUZZ_LDIR)/fuzz_$$t.log; }; \
 	    grep -E '^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)|cov: ' \
-	        $(FUZZ_DIR)/fuzz_$$t.log | tail -4; \
+	        $(FUZZ_LDIR)/fuzz_$$t.log | tail -4; \
 	done; exit $$fail
 
-## fuzz-build: build the libFuzzer binaries only (clang, build/fuzz/fuzz_<target>)
-fuzz-build: $(FUZZ_BINS)
+## fuzz-build: build the libFuzzer binaries of both trees (clang, build/fuzz/ and build/fuzz-small/)
+fuzz-build: $(FUZZ_BINS) $(FUZZ_SBINS)
 
-## fuzz-check: each libFuzzer target for FUZZ_RUNS (20000; fuzz_run 8000) fixed-seed executions (word "fuzz")
+## fuzz-check: seed corpus, then FUZZ_RUNS (20000; fuzz_run 8000) fixed-seed executions per target, full limits (word "fuzz")
 fuzz-check: $(FUZZ_BINS)
 	$(Q)pass=0; fail=0; for t in $(FUZZ_TARGETS); do \
 	    rm -rf $(FUZZ_DIR)/check/$$t; mkdir -p $(FUZZ_DIR)/check/$$t $(FUZZ_DIR)/artifacts; \
@@ -72,18 +128,6 @@ fuzz-check: $(FUZZ_BINS)
 	        grep -E 'fuzz_[a-z]+: |ERROR|SUMMARY|Test unit written' $(FUZZ_DIR)/check_$$t.log | head -8; \
 	    fi; \
 	done; echo "fuzz: $$pass passed, $$fail failed"; [ $$fail -eq 0 ]
-
-$(FUZZ_DIR)/fw/%.o: firmware/%.c
-	@mkdir -p $(@D)
-	$(Q)$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
-
-$(FUZZ_DIR)/tests/%.o: tests/%.c
-	@mkdir -p $(@D)
-	$(Q)$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
-
-$(FUZZ_DIR)/fuzz_%: tests/fuzz_%.c $(FUZZ_FW_OBJ)
-	@mkdir -p $(@D)
-	$(Q)$(CLANG) $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< $(FUZZ_FW_OBJ) -lm
 
 ##
 ## unit-asan: host unit tests (float) with ASan + UBSan, no recovery (runner word "unit-asan")

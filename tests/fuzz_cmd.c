@@ -364,7 +364,7 @@ static void trace_bytes(const char *dir, const uint8_t *b, size_t n)
     fputc('\n', stderr);
 }
 
-static void poll_once(void)
+static int poll_once(void)
 {
     size_t in0 = in_read(), out0 = mem.out_len;
     int r = proto_poll(&eng);
@@ -385,6 +385,7 @@ static void poll_once(void)
     }
     observe();
     flush_pending();
+    return r;
 }
 
 /* Feed one piece of host input and poll until it is consumed. */
@@ -417,9 +418,15 @@ static void feed_piece(const uint8_t *b, size_t n)
             last = in_read();
         }
     }
-    /* let the stream run a little with the machine answering */
+    /* let the stream run a little with the machine answering. An idle engine (no
+     * run, nothing to read, nothing queued, and proto_poll reports that nothing
+     * moved) does nothing on further polls - proto.h: the caller may sleep until
+     * the next byte - so the remaining polls are skipped. */
     for (polls = 0; polls < 64; polls++) {
-        poll_once();
+        if (poll_once() == 0 && eng.state == PROTO_IDLE && mem.in_pos == mem.in_len &&
+            npending == 0) {
+            break;
+        }
     }
 }
 
