@@ -77,6 +77,7 @@ $(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%
 -include mk/canal.mk
 -include mk/stream.mk
 -include mk/fuzz.mk
+-include mk/hardening.mk
 
 ## check: every test and guard; ends with one "N passed, N failed" line
 check:
