@@ -182,6 +182,22 @@ static void label_between(const struct canal_frame *f, cp_real ha, cp_real ba, c
     *b = dy;
 }
 
+/* Label at fraction sig of the way from label (ha, ba) to (hb, bb) at frame f, by
+ * normalised linear interpolation of the half-angle directions d = (h/q, b): no
+ * trigonometry (a link move is a few points; its chord count allows for the up to
+ * 2 tan(phi/2)/phi wider middle steps, phi = the half-angle gap; lines_link). */
+static void label_lerp(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb, cp_real bb,
+                       cp_real sig, cp_real *h, cp_real *b)
+{
+    cp_real q = cp_sqrt(f->q2);
+    cp_real ax = ha / q, ay = ba, bx = hb / q, by = bb;
+    cp_real na = CP_R(1.0) / cp_sqrt(ax * ax + ay * ay),
+            nb = CP_R(1.0) / cp_sqrt(bx * bx + by * by);
+    cp_real wa = (CP_R(1.0) - sig) * na, wb = sig * nb;
+    *h = q * (wa * ax + wb * bx); /* homogeneous: no need to normalise the result */
+    *b = wa * ay + wb * by;
+}
+
 /* Angle between labels a and b at frame f, radians in [0, pi] (half-angle space x2). */
 static cp_real label_gap(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb,
                          cp_real bb)
@@ -317,6 +333,7 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
     struct canal_jet j;
     struct canal_frame f;
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    cp_real gap, widen, sn, cs;
     uint32_t end, jl, segs, worst = 1u, k;
     if (tp->n <= 1u) {
         tp->link = 0u;
@@ -333,13 +350,17 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
             first_label(tp, line_u0(tp, jl), &aa, &ba);
             first_label(tp, line_u0(tp, jl + 1u), &ab, &bb);
             rad = (f.r - off) / cp_sqrt(f.q2);
-            segs = arc_segments(rad, label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb), tol);
+            gap = label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb);
+            /* label_lerp's middle steps are wider by 2 tan(phi/2)/phi, phi = gap/2 */
+            cp_sincos(CP_R(0.25) * gap, &sn, &cs);
+            widen = gap > CP_R(1e-6) ? CP_R(4.0) * sn / (cs * gap) : CP_R(1.0);
+            segs = arc_segments(rad, gap * widen, tol);
             worst = segs > worst ? segs : worst;
             /* the link arc itself must stay on the regular sheet */
             for (k = 1; k < LINK_PROBES; k++) {
                 cp_real hh, b2;
-                label_between(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
-                              (cp_real)k / (cp_real)LINK_PROBES, &hh, &b2);
+                label_lerp(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
+                           (cp_real)k / (cp_real)LINK_PROBES, &hh, &b2);
                 if (!regular(tp, &f, hh, b2)) {
                     return CP_ERR_CUSP;
                 }
@@ -597,6 +618,7 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     tp->labels = cfg->labels;
     tp->span = cfg->span;
     tp->lab_line = -1;
+    tp->lab2_line = -1;
     tp->n = cfg->n;
     tp->u0 = cfg->u0;
     tp->u1 = cfg->u1;
@@ -642,7 +664,8 @@ static void quad_goto(struct toolpath *tp, uint32_t target, int back, struct can
         quad_march(tp, &q, 0u, last / 2u, 1, tp->hp, j);
         quad_march(tp, &q, last, (last - target) / 2u, 0, tp->hp, j);
         if (target == 0u) {
-            quad_reset(&tp->surf, &q, j);
+            q.lam = CP_R(0.0); /* snap to the exact Lambda(t0); *j is already the jet at t0 */
+            q.comp = CP_R(0.0);
         }
     }
     tp->node = target;
@@ -658,7 +681,19 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
     }
     tp->k = k;
     tp->node = 0xFFFFFFFFu; /* no quadrature state yet: next() positions it */
+    if (k == 0u && tp->mode == TOOLPATH_CIRCLES) {
+        /* the stream starts at node 0: set it up now, so the first point costs what
+         * every other point costs */
+        struct quad q;
+        struct canal_jet jt;
+        quad_reset(&tp->surf, &q, &jt);
+        tp->node = 0u;
+        tp->lam = q.lam;
+        tp->comp = q.comp;
+        tp->g_node = q.g;
+    }
     tp->lab_line = -1;
+    tp->lab2_line = -1;
     return CP_OK;
 }
 
@@ -679,7 +714,8 @@ static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal
         q.g = tp->g_node;
         quad_march(tp, &q, tp->node, m, 0, tp->hp, j);
         if (target == 0u) {
-            quad_reset(&tp->surf, &q, j);
+            q.lam = CP_R(0.0); /* snap to the exact Lambda(t0); *j is already the jet at t0 */
+            q.comp = CP_R(0.0);
         }
     } else if (tp->node == target && tp->node != 0xFFFFFFFFu) {
         canal_jet(&tp->surf, t_at(tp, target, tp->hp), j);
@@ -709,6 +745,26 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
     pt->line = (int16_t)line;
     pt->index = (uint16_t)index;
     return CP_OK;
+}
+
+/* Make the label of line jl current (taken from the next-line cache when it was made
+ * ahead) and, with ahead, the label of line jl + 1 too. Spreading the label work this
+ * way keeps every point's cost close to the mean (no point pays two sincos). */
+static void line_labels(struct toolpath *tp, uint32_t jl, int ahead)
+{
+    if (tp->lab_line != (int32_t)jl) {
+        if (tp->lab2_line == (int32_t)jl) {
+            tp->lab_a = tp->lab2_a;
+            tp->lab_b = tp->lab2_b;
+        } else {
+            first_label(tp, line_u0(tp, jl), &tp->lab_a, &tp->lab_b);
+        }
+        tp->lab_line = (int32_t)jl;
+    }
+    if (ahead && jl + 1u < tp->n && tp->lab2_line != (int32_t)(jl + 1u)) {
+        first_label(tp, line_u0(tp, jl + 1u), &tp->lab2_a, &tp->lab2_b);
+        tp->lab2_line = (int32_t)(jl + 1u);
+    }
 }
 
 static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
@@ -746,29 +802,36 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
             quad_to(tp, a, back, &j);
         }
         canal_frame_pt(&j, &f);
-        if (tp->lab_line != (int32_t)jl) {
-            first_label(tp, line_u0(tp, jl), &tp->lab_a, &tp->lab_b);
-            tp->lab_line = (int32_t)jl;
+        if (tp->lab_line != (int32_t)jl || r == tp->steps) {
+            line_labels(tp, jl, r == tp->steps); /* a line's first and last points only */
         }
         al = tp->lab_a;
         bl = tp->lab_b;
         emit_inline(tp, &f, al + tp->lam * bl, bl, &cp); /* the streaming hot path */
         return finish(&cp, t, (int)jl, i, pt);
     }
-    /* link point r - steps (1..link) after line jl, at its end node */
+    /* link point r - steps (1..link) after line jl, at its end node, between the labels
+     * of lines jl and jl + 1 (both cached: the next one was made at the line's last point) */
     {
-        cp_real aa, ba, ab, bb, hh, b2;
+        cp_real hh, b2, t;
         uint32_t kk = r - tp->steps;
         i = back ? 0u : tp->steps;
         a = i * m2;
-        quad_to(tp, a, back, &j);
+        t = t_at(tp, a, tp->hp);
+        if (tp->surf.kappa_const) {
+            canal_jet1(&tp->surf, t, &j);
+            tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
+            tp->node = 0xFFFFFFFFu;
+        } else {
+            quad_to(tp, a, back, &j);
+        }
         canal_frame_pt(&j, &f);
-        first_label(tp, line_u0(tp, jl), &aa, &ba);
-        first_label(tp, line_u0(tp, jl + 1u), &ab, &bb);
-        label_between(&f, aa + tp->lam * ba, ba, ab + tp->lam * bb, bb,
-                      (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);
+        line_labels(tp, jl, 1);
+        label_lerp(&f, tp->lab_a + tp->lam * tp->lab_b, tp->lab_b,
+                   tp->lab2_a + tp->lam * tp->lab2_b, tp->lab2_b,
+                   (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);
         emit_point(tp, &f, hh, b2, &cp);
-        return finish(&cp, t_at(tp, a, tp->hp), -1, kk, pt);
+        return finish(&cp, t, -1, kk, pt);
     }
 }
 

@@ -102,6 +102,8 @@ struct toolpath {
     uint16_t n, steps, substeps, link;
     int32_t lab_line; /* line whose label is cached in lab_a, lab_b (-1: none) */
     cp_real lab_a, lab_b;
+    int32_t lab2_line; /* line whose label is cached in lab2_a, lab2_b (the next line) */
+    cp_real lab2_a, lab2_b;
     cp_real u0, u1, tool_r;
     cp_real hp;     /* half-panel width in t: output/node step = 2 substeps hp */
     cp_real q0;     /* q at t0 (labels) */

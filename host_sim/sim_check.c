@@ -11,9 +11,10 @@
  *            u = the family-2 line through (t0, u0 + j (u1 - u0)/(n - 1)), integrated by
  *            ref_line (adaptive Dormand-Prince, 1e-12 rad), one state per line, advanced
  *            incrementally in either direction (odd lines: t0 -> t1 once, then back).
- *            r > steps: link point kk = r - steps at t = t1 (j even) / t0 (j odd), at contact
- *            angle u_j + kk/(link + 1) * delta, delta = u_{j+1} - u_j taken along the
- *            shorter HALF-angle route (as the firmware's label_between: |delta| <= 2 pi).
+ *            r > steps: link point kk = r - steps at t = t1 (j even) / t0 (j odd), at the
+ *            contact angle of the normalised linear interpolation (fraction kk/(link + 1))
+ *            of the half-angle directions of u_j and u_{j+1} along the shorter half-angle
+ *            route (the firmware's label_lerp; link_u).
  *   CIRCLES  gsteps = (n - 1)(link + 1) (1 if n == 1), node t = t0 + node (t1 - t0)/gsteps;
  *            circle c at node c (link + 1), points i = (c odd ? steps - r : r) uniform in
  *            contact angle from the bound u0 to the bound u1 (half-angle route); links at
@@ -273,6 +274,16 @@ static double seg_dist(const double *a, const double *b, const double *x)
     return dist3(c, x);
 }
 
+/* Contact angle of a LINES link point at fraction sig of the way from ua to ua + d:
+ * the firmware interpolates the unit half-angle directions linearly and renormalises
+ * (label_lerp), so the half angle moves by atan2(sig sin phi, 1 - sig + sig cos phi),
+ * phi = d/2 - not uniformly. */
+static double link_u(double ua, double d, double sig)
+{
+    double phi = 0.5 * d;
+    return ua + 2.0 * atan2(sig * sin(phi), 1.0 - sig + sig * cos(phi));
+}
+
 /* Contact-angle difference along the shorter half-angle route (firmware label_between). */
 static double route(double d)
 {
@@ -432,7 +443,7 @@ static int locate(uint32_t k, struct pt *x, struct seg *sg, int want_seg)
                 d = route(ub - ua);
                 sg->kind = SEG_CIRCLE;
                 sg->t = te;
-                sg->ua = ua + d * (double)run.link / (double)(run.link + 1u);
+                sg->ua = link_u(ua, d, (double)run.link / (double)(run.link + 1u));
                 sg->ub = ua + d;
             }
             /* the line state ends at x->t after the chord sampling */
@@ -448,11 +459,11 @@ static int locate(uint32_t k, struct pt *x, struct seg *sg, int want_seg)
             }
             d = route(ub - ua);
             x->t = te;
-            x->u = ua + d * (double)kk / (double)(run.link + 1u);
+            x->u = link_u(ua, d, (double)kk / (double)(run.link + 1u));
             if (want_seg) {
                 sg->kind = SEG_CIRCLE;
                 sg->t = te;
-                sg->ua = ua + d * (double)(kk - 1u) / (double)(run.link + 1u);
+                sg->ua = link_u(ua, d, (double)(kk - 1u) / (double)(run.link + 1u));
                 sg->ub = x->u;
             }
             return 0;
