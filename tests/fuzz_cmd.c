@@ -60,8 +60,9 @@ static size_t in_base;         /* bytes of in[] dropped by in_reset (progress co
 
 /* independent iterator of the current run's job */
 static struct toolpath ref;
-static struct toolpath_cfg ref_cfg, snap_cfg;
+static struct toolpath_cfg ref_cfg, snap_cfg, pre_cfg;
 static int ref_ok, have_snap;
+static int poll_active; /* the engine was running after the current poll */
 static uint32_t gk;            /* next point index expected in a G-code run (no checksum) */
 static uint32_t hfirst;         /* first point of the run whose header was seen last (checksum mode) */
 static uint8_t snap_checksum;
@@ -124,18 +125,38 @@ static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
     return toolpath_next(&ref, pt) == CP_OK;
 }
 
-static void ref_start(void)
+static int ref_try(const struct toolpath_cfg *c)
 {
-    if (!have_snap) {
-        FAIL("stream header without a running job");
-    }
-    if (!ref_ok || memcmp(&ref_cfg, &snap_cfg, sizeof ref_cfg) != 0) {
-        ref_cfg = snap_cfg;
+    if (!ref_ok || memcmp(&ref_cfg, c, sizeof ref_cfg) != 0) {
+        ref_cfg = *c;
         ref_ok = toolpath_init(&ref, &ref_cfg) == CP_OK;
-        if (!ref_ok) {
+    }
+    return ref_ok;
+}
+
+/* A stream header (text "[RUN:points=count" or a BEGIN frame) arrived: point the
+ * reference iterator at the run's job. While the run is active after the poll that
+ * sent the header, the job is the engine's (job commands are refused while running).
+ * A run can also start and end within one poll ("RUN\r\x18..." in one read: the
+ * header, then error:20): then the job was the engine's job before or after that
+ * poll (or at the last active poll), and the one whose iterator gives `count`
+ * points is taken. No point of such a run can follow (at most one stream item per
+ * poll, and the first is the preamble / BEGIN). */
+static void ref_start(uint32_t count)
+{
+    if (poll_active) {
+        if (!ref_try(&snap_cfg)) {
             FAIL("the firmware runs a job the iterator rejects");
         }
+        return;
     }
+    if ((have_snap && ref_try(&snap_cfg) && toolpath_count(&ref) == count) ||
+        (ref_try(&pre_cfg) && toolpath_count(&ref) == count) ||
+        (ref_try(&eng.job.cfg) && toolpath_count(&ref) == count)) {
+        return;
+    }
+    FAIL("stream header (%u points) of a run that ended in the poll that started it, for "
+         "no job the iterator reproduces", (unsigned)count);
 }
 
 /* "X1.2345" style fixed-point field -> integer of 1e-4 units */
@@ -212,7 +233,7 @@ static void text_line(char *l)
         }
         if (strncmp(l, "[RUN:points=", 12) == 0) {
             const char *f = strstr(l, ",first=");
-            ref_start();
+            ref_start((uint32_t)strtoul(l + 12, NULL, 10));
             if (f == NULL) {
                 FAIL("bad run header \"%s\"", l);
             }
@@ -269,7 +290,7 @@ static void frame_in(const uint8_t *f)
     uint8_t ack[8];
     int n;
     if (f[2] == FRAME_BEGIN) {
-        ref_start();
+        ref_start(frame_get_u32(f + 3));
         if (f[0] != 15u + FRAME_OVERHEAD || frame_get_u32(f + 3) != toolpath_count(&ref)) {
             FAIL("bad BEGIN frame");
         }
@@ -367,7 +388,9 @@ static void trace_bytes(const char *dir, const uint8_t *b, size_t n)
 static int poll_once(void)
 {
     size_t in0 = in_read(), out0 = mem.out_len;
-    int r = proto_poll(&eng);
+    int r;
+    pre_cfg = eng.job.cfg;
+    r = proto_poll(&eng);
     if (trace < 0) {
         trace = getenv("FUZZ_TRACE") != NULL;
     }
@@ -378,7 +401,8 @@ static int poll_once(void)
     if (r < 0) {
         FAIL("proto_poll = %d", r);
     }
-    if (eng.state != PROTO_IDLE) {
+    poll_active = eng.state != PROTO_IDLE;
+    if (poll_active) {
         snap_cfg = eng.job.cfg;
         snap_checksum = eng.job.checksum;
         have_snap = 1;
@@ -485,7 +509,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     scan = tlen = npending = in_base = 0;
     tline_bin = 0;
     frame_rx_init(&frx);
-    ref_ok = have_snap = 0;
+    ref_ok = have_snap = poll_active = 0;
     gk = 0;
     hfirst = 0;
     while (a < size) {
