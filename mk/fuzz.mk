@@ -16,6 +16,8 @@ FUZZ_RUNS    ?= 20000
 # fuzz_run drives a whole FRAMES session per input (~600 exec/s): fewer runs keep
 # fuzz-check under a minute.
 FUZZ_RUNS_RUN ?= 20000
+# FUZZ_JOBS > 1: libFuzzer -jobs/-workers (forked workers write fuzz-<i>.log into the
+# current directory); 1 (default) runs one plain process.
 FUZZ_JOBS    ?= 1
 FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=all
 FUZZ_CFLAGS  := -std=c99 -g -fno-omit-frame-pointer $(FPFLAGS) $(INC) $(FUZZ_SAN)
@@ -100,8 +102,8 @@ fuzz: $(FUZZ_LBINS)
 	$(Q)fail=0; for t in $(FUZZ_TARGETS); do \
 	    mkdir -p $(FUZZ_LDIR)/corpus/$$t $(FUZZ_LDIR)/artifacts; \
 	    echo "== fuzz_$$t ($(FUZZ_CONF), $(FUZZ_SECONDS) s)"; \
-	    $(FUZZ_LDIR)/fuzz_$$t $(FUZZ_OPTS) -max_total_time=$(FUZZ_SECONDS) -jobs=$(FUZZ_JOBS) \
-	        -workers=$(FUZZ_JOBS) -artifact_prefix=$(FUZZ_LDIR)/artifacts/$$t- \
+	    $(FUZZ_LDIR)/fuzz_$$t $(FUZZ_OPTS) -max_total_time=$(FUZZ_SECONDS) \
+	        $(if $(filter-out 1,$(FUZZ_JOBS)),-jobs=$(FUZZ_JOBS) -workers=$(FUZZ_JOBS)) -artifact_prefix=$(FUZZ_LDIR)/artifacts/$$t- \
 	        $(FUZZ_LDIR)/corpus/$$t tests/corpus/$$t > $(FUZZ_LDIR)/fuzz_$$t.log 2>&1 \
 	        || { fail=1; echo "fuzz_$$t: FAILED (log $(FUZZ_LDIR)/fuzz_$$t.log)"; tail -40 $(FUZZ_LDIR)/fuzz_$$t.log; }; \
 	    grep -E '^stat::(number_of_executed_units|average_exec_per_sec|new_units_added)|cov: ' \
