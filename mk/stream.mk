@@ -31,3 +31,19 @@ sim-rs274: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	        ok=$$((ok + p)); bad=$$((bad + f)); \
 	    else echo "  FAIL host_sim on $$j"; tail -3 $(BUILD)/rs274/$$j.log; bad=$$((bad + 1)); fi; done; \
 	echo "rs274: $$ok passed, $$bad failed"; [ $$bad -eq 0 ]
+
+.PHONY: sim-asan
+## sim-asan: fw_native and host_sim built with ASan + UBSan (no recovery) run judged sessions:
+##           G-code, frames, checksums with a dropped byte, a hang-up with RESUME (word "sim-asan")
+SAN_CC := $(CC) -fsanitize=address,undefined -fno-sanitize-recover=all
+sim-asan:
+	$(Q)$(MAKE) --no-print-directory BUILD=$(BUILD)/asan CC="$(SAN_CC)" STACK_FN_MAX=65536 fw-native host-sim >/dev/null
+	$(Q)ok=0; bad=0; A=$(BUILD)/asan/host; \
+	for c in "paper_gcode.job" "paper_frames.job" "paper_gcode_cs.job --fault drop@5003" \
+	         "paper_frames.job --fault hangup@40000 --resume" "boss_frames.job --fault flip@1000"; do \
+	    set -- $$c; j=$$1; shift; \
+	    if ASAN_OPTIONS=detect_leaks=0 $$A/host_sim --target native --fw $$A/fw_native \
+	        --job tests/jobs/$$j "$$@" > $(BUILD)/asan/last.log 2>&1; then \
+	        ok=$$((ok + 1)); echo "  PASS $$c"; \
+	    else bad=$$((bad + 1)); echo "  FAIL $$c"; grep -E "ERROR|runtime error|FAIL" $(BUILD)/asan/last.log | head -5; fi; done; \
+	echo "sim-asan: $$ok passed, $$bad failed"; [ $$bad -eq 0 ]
