@@ -59,7 +59,9 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     p->pend_idx = 0;
     p->hdr = 1;
     p->frames_tail = 0;
-    p->tail_skip = 0;
+    p->tail_len = 0;
+    p->tail_rep = 0;
+    p->tail_t = 0;
     p->tp.count = 0;
     frame_rx_init(&p->frx);
     return CP_OK;
@@ -657,26 +659,9 @@ static int realtime(struct proto *p, uint8_t c)
     }
 }
 
-static void feed(struct proto *p, uint8_t c)
+/* Text path: real-time bytes, then line assembly. */
+static void feed_text(struct proto *p, uint8_t c)
 {
-    if (p->state != PROTO_IDLE && p->fmt == JOB_FRAMES) {
-        if (frame_rx_feed(&p->frx, c)) {
-            frames_rx(p, p->frx.buf);
-        }
-        return;
-    }
-    if (p->frames_tail) {
-        /* after a FRAMES run the host may still send late 6-byte ACK/NAK frames: they
-         * start with 0x06, which never occurs in text; skip them whole */
-        if (p->tail_skip > 0u) {
-            p->tail_skip--;
-            return;
-        }
-        if (c == FRAME_MIN) {
-            p->tail_skip = FRAME_MIN - 1u;
-            return;
-        }
-    }
     if (realtime(p, c)) {
         return;
     }
@@ -704,6 +689,78 @@ static void feed(struct proto *p, uint8_t c)
         return;
     }
     p->line[p->line_len++] = (char)c;
+}
+
+/* After a FRAMES run the host may still send late 6-byte ACK/NAK frames. They start
+ * with len = 6 (0x06, never valid in text). Bytes from such a 0x06 on are held in
+ * tail[] and checked as they come: a complete frame of a host type with a good CRC
+ * and sync is dropped whole; anything else (line noise) is replayed, byte for byte,
+ * as text once it fails a check, so a command after a stray 0x06 is never lost (its
+ * line gets error:8 for the bad byte, as any other noise would). Returns 1 if c was
+ * taken here. */
+static int tail_take(struct proto *p, uint8_t c)
+{
+    uint8_t n = p->tail_len;
+    int ok;
+    if (n == 0u) {
+        if (c != FRAME_MIN) {
+            return 0;
+        }
+        p->tail_t = hal_uart_now_ms(p->uart);
+    }
+    p->tail[n++] = c;
+    p->tail_len = n;
+    switch (n) {
+    case 3u: /* type: a host -> firmware frame */
+        ok = c >= FRAME_ACK && c <= FRAME_STATUS;
+        break;
+    case 6u: {
+        uint16_t crc = frame_crc16(0xFFFFu, p->tail, 3u);
+        ok = c == FRAME_SYNC && p->tail[3] == (uint8_t)(crc >> 8) &&
+             p->tail[4] == (uint8_t)(crc & 0xFFu);
+        if (ok) {
+            p->tail_len = 0; /* a late frame: dropped */
+            return 1;
+        }
+        break;
+    }
+    default:
+        ok = 1;
+        break;
+    }
+    if (!ok) {
+        p->tail_rep = n; /* not a frame: proto_poll replays the held bytes as text */
+    }
+    return 1;
+}
+
+static void feed(struct proto *p, uint8_t c)
+{
+    if (p->state != PROTO_IDLE && p->fmt == JOB_FRAMES) {
+        if (frame_rx_feed(&p->frx, c)) {
+            frames_rx(p, p->frx.buf);
+        }
+        return;
+    }
+    if (p->frames_tail && tail_take(p, c)) {
+        return;
+    }
+    feed_text(p, c);
+}
+
+/* The next held byte of a failed late-frame check, as text (it never starts another
+ * check: a 0x06 among them is noise and makes its line error:8). */
+static void tail_replay(struct proto *p)
+{
+    uint8_t c = p->tail[p->tail_len - p->tail_rep];
+    if (--p->tail_rep == 0u) {
+        p->tail_len = 0;
+    }
+    if (p->state != PROTO_IDLE && p->fmt == JOB_FRAMES) {
+        feed(p, c); /* a replayed RUN started a FRAMES run: the rest are its bytes */
+    } else {
+        feed_text(p, c);
+    }
 }
 
 int proto_poll(struct proto *p)
@@ -740,7 +797,16 @@ int proto_poll(struct proto *p)
     }
     /* 3. consume bytes while a whole reply burst still fits (back-pressure:
      *    unread bytes stay in the HAL/kernel buffer, nothing is dropped) */
-    while (p->rx_pos < p->rx_len && tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
+    if (p->tail_len > 0u && p->tail_rep == 0u && p->rx_pos == p->rx_len &&
+        (uint32_t)(hal_uart_now_ms(p->uart) - p->tail_t) >= PROTO_TAIL_MS) {
+        p->tail_rep = p->tail_len; /* a stalled prefix is not a frame: replay it */
+    }
+    while (p->tail_rep > 0u && tx_room(p) >= PROTO_REPLY_MAX) { /* <= FRAME_MIN */
+        tail_replay(p);
+        moved = 1;
+    }
+    while (p->tail_rep == 0u && p->rx_pos < p->rx_len &&
+           tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
         feed(p, p->rx[p->rx_pos++]);
         moved = 1;
     }

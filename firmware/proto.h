@@ -37,6 +37,11 @@
 /* Worst-case length of one reply burst (the $I answer, or one stream line), bytes. */
 #define PROTO_REPLY_MAX 160
 
+/* After a FRAMES run: a held 0x06.. prefix that gets no further byte for this long
+ * is not a late host frame and is replayed as text, ms. A 6-byte frame takes 6 ms
+ * at 9600 baud. */
+#define PROTO_TAIL_MS 50u
+
 /* FRAMES: unacknowledged frames in flight (1..64). */
 #ifndef PROTO_WINDOW
 #define PROTO_WINDOW 16u
@@ -107,7 +112,10 @@ struct proto {
     uint8_t pend_len;    /* GCODE: bytes of the built line in pend[], waiting for RXBUF room */
     uint8_t hdr;         /* GCODE: header lines before the points (1, or 2 with CHECKSUM) */
     uint8_t frames_tail; /* the last run was FRAMES: late ACK/NAK frames may still arrive */
-    uint8_t tail_skip;   /* bytes left of such a late 6-byte frame (never fed as text) */
+    uint8_t tail_len;    /* bytes of a possible late frame held in tail[] */
+    uint8_t tail_rep;    /* bytes of tail[] still to replay as text (not a frame after all) */
+    uint8_t tail[FRAME_MIN]; /* a possible late 6-byte host frame, checked before it is dropped */
+    uint32_t tail_t;     /* ms when tail[] got its first byte (a stalled prefix is replayed) */
     uint32_t pend_idx;   /* GCODE: stream index of that line */
     char pend[PROTO_GCODE_MAX]; /* GCODE: the next stream line, built once */
     uint32_t start_k;           /* first point of the run (RESUME k) */

@@ -113,7 +113,7 @@ fuzz: $(FUZZ_LBINS)
 ## fuzz-build: build the libFuzzer binaries of both trees (clang, build/fuzz/ and build/fuzz-small/)
 fuzz-build: $(FUZZ_BINS) $(FUZZ_SBINS)
 
-## fuzz-check: seed corpus, then FUZZ_RUNS (20000; fuzz_run 8000) fixed-seed executions per target, full limits (word "fuzz")
+## fuzz-check: seed corpus, then FUZZ_RUNS (20000) and FUZZ_RUNS_RUN (20000) fixed-seed executions per target, full limits (word "fuzz")
 fuzz-check: $(FUZZ_BINS)
 	$(Q)pass=0; fail=0; for t in $(FUZZ_TARGETS); do \
 	    rm -rf $(FUZZ_DIR)/check/$$t; mkdir -p $(FUZZ_DIR)/check/$$t $(FUZZ_DIR)/artifacts; \

@@ -63,6 +63,7 @@ static char text[128];
 static size_t tlen;
 static int in_frames;     /* the run's frames are still coming (text comes after END/error) */
 static int finished;      /* the closing text line arrived */
+static int saw_ver;       /* the $I answer's "[VER:" line arrived (finished is reset there) */
 static int last_seq = -1; /* seq of the newest frame received */
 static int good_host;     /* ack every frame */
 static uint32_t first, npts;
@@ -126,6 +127,10 @@ static void text_line(void)
         finished = 1;
     } else if (!in_frames && (text[0] == '[' || (text[0] == '<' && text[tlen - 1] == '>'))) {
         /* $I answer, or a status report ('?' in the bytes after the run ended) */
+        if (strncmp(text, "[VER:", 5) == 0) {
+            saw_ver = 1;
+            finished = 0; /* the "ok" of the $I answer must follow */
+        }
     } else {
         FAIL("unexpected text \"%s\"", text);
     }
@@ -420,11 +425,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     finished = 0;
     in_frames = 0;
     tlen = 0;
-    host_bytes("$I\n", 3);
-    for (i = 0; i < 50 && !finished; i++) {
+    saw_ver = 0;
+    /* a newline first, as a sender does after line noise: it ends a partial line of
+     * the program's raw bytes, and a held 0x06.. prefix (a possible late frame) fails
+     * its check at or before this byte or at one of "$I" (at most 5 bytes are held),
+     * so "$I\n" is a line of its own */
+    host_bytes("\n$I\n", 4);
+    for (i = 0; i < 50 && !(saw_ver && finished); i++) {
         poll_n(1);
     }
-    if (!finished) {
+    if (!saw_ver || !finished) {
         FAIL("no answer to $I after the run");
     }
     return 0;

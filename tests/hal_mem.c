@@ -59,6 +59,12 @@ void hal_mem_init(struct hal_mem *m, struct hal_uart *u)
 
 int hal_mem_feed(struct hal_mem *m, const void *data, size_t n)
 {
+    if (n > HAL_MEM_IN - m->in_len && m->in_pos > 0) {
+        /* compact: drop the bytes the firmware has already read */
+        memmove(m->in, m->in + m->in_pos, m->in_len - m->in_pos);
+        m->in_len -= m->in_pos;
+        m->in_pos = 0;
+    }
     if (n > HAL_MEM_IN - m->in_len) {
         return -1;
     }

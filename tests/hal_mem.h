@@ -27,7 +27,8 @@ struct hal_mem {
 
 /* Reset m and point u at it. */
 void hal_mem_init(struct hal_mem *m, struct hal_uart *u);
-/* Append n bytes (host -> firmware). Returns 0 or -1 if in[] is full. */
+/* Append n bytes (host -> firmware), compacting in[] first if needed. Returns 0,
+ * or -1 if the unread bytes and n do not fit in in[]. */
 int hal_mem_feed(struct hal_mem *m, const void *data, size_t n);
 /* Append a NUL-terminated string (host -> firmware). */
 int hal_mem_feed_str(struct hal_mem *m, const char *s);

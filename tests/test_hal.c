@@ -46,8 +46,13 @@ int test_hal_mem(void)
     CHECK_EQ_INT(b[0], 'e');
     CHECK_EQ_INT(hal_uart_read(&u, b, sizeof b), 1);
     CHECK_EQ_INT(hal_uart_read(&u, b, sizeof b), 0);
-    /* the input buffer refuses what does not fit, whole */
-    CHECK_EQ_INT(hal_mem_feed(&hm, b, HAL_MEM_IN), -1);
+    /* the input buffer refuses what does not fit beside the unread bytes, whole */
+    CHECK_EQ_INT(hal_mem_feed(&hm, b, HAL_MEM_IN + 1u), -1);
+    CHECK_EQ_INT(hal_mem_feed_str(&hm, "gh"), 0);
+    CHECK_EQ_INT(hal_mem_feed(&hm, b, HAL_MEM_IN - 1u), -1);
+    hm.read_chunk = 0;
+    CHECK_EQ_INT(hal_uart_read(&u, b, sizeof b), 2);
+    CHECK(memcmp(b, "gh", 2) == 0);
     hm.write_chunk = 3;
     CHECK_EQ_INT(hal_uart_write(&u, (const uint8_t *)"hello", 5), 3);
     CHECK_EQ_INT(hal_uart_write(&u, (const uint8_t *)"lo", 2), 2);

@@ -431,7 +431,7 @@ int test_stream_bad_input(void)
 }
 
 /* FRAMES: decode, ack every frame; drop one ack and NAK one frame on purpose. */
-int test_stream_frames(void)
+static int frames_run(void)
 {
     struct frame_rx fr;
     uint32_t expect = 0, pts = 0, k = 0;
@@ -492,6 +492,14 @@ int test_stream_frames(void)
     rig.m.out_len = rig.scan = 0;
     CHECK(next_line(l, sizeof l, 2000));
     CHECK(strcmp(l, "ok") == 0);
+    CHECK(rig.p.frames_tail);
+    return 0;
+}
+
+int test_stream_frames(void)
+{
+    char l[64];
+    CHECK(frames_run() == 0);
     /* a late duplicate ACK whose seq is '\n' arrives after the run: skipped whole, so
      * the next command is answered exactly once, normally */
     {
@@ -501,6 +509,56 @@ int test_stream_frames(void)
     }
     CHECK(expect_code("FORMAT GCODE", 0));
     CHECK(!next_line(l, sizeof l, 50)); /* and nothing else */
+    return 0;
+}
+
+/* After a FRAMES run a stray 0x06 that is not a late host frame is line noise: the
+ * held bytes are replayed as text, so no command after it is lost (finding F5 of
+ * docs/HARDENING.md: the firmware once dropped 0x06 and the next five bytes). */
+int test_stream_frames_tail_noise(void)
+{
+    static const uint8_t noise[] = {0x06, '\n', '$', 'I', '\n', 'H', 'E', 'L', 'L', 'O', '\n'};
+    uint8_t ack[8];
+    char l[160];
+    int n, i, ver = 0, oks = 0;
+    CHECK(frames_run() == 0); /* leaves a finished FRAMES run behind */
+    rig.m.out_len = rig.scan = 0;
+    hal_mem_feed(&rig.m, noise, sizeof noise);
+    CHECK(next_line(l, sizeof l, 200));
+    CHECK(strncmp(l, "error:8 ", 8) == 0); /* the line "\x06" */
+    for (i = 0; i < 8 && next_line(l, sizeof l, 200); i++) {
+        ver += strncmp(l, "[VER:", 5) == 0;
+        oks += strcmp(l, "ok") == 0;
+    }
+    CHECK_EQ_INT(ver, 2); /* $I and HELLO both answered */
+    CHECK_EQ_INT(oks, 2);
+    CHECK(rig.p.frames_tail); /* neither ends the tail: late frames may still come */
+    /* a frame with a bad CRC is noise too (its bytes join the next line) */
+    n = frame_encode((uint8_t)' ', FRAME_NAK, NULL, 0, ack, sizeof ack);
+    ack[3] ^= 1u;
+    hal_mem_feed(&rig.m, ack, (size_t)n);
+    host_send("\n");
+    CHECK(next_line(l, sizeof l, 200));
+    CHECK(strncmp(l, "error:8 ", 8) == 0);
+    /* a stalled prefix (0x06 then '\n', nothing more) is replayed after PROTO_TAIL_MS */
+    hal_mem_feed(&rig.m, noise, 2);
+    CHECK(next_line(l, sizeof l, 2 * (int)PROTO_TAIL_MS));
+    CHECK(strncmp(l, "error:8 ", 8) == 0);
+    /* a valid late frame is still dropped whole, even split across polls */
+    n = frame_encode((uint8_t)'\n', FRAME_NAK, NULL, 0, ack, sizeof ack);
+    for (i = 0; i < n; i++) {
+        hal_mem_feed(&rig.m, ack + i, 1);
+        (void)proto_poll(&rig.p);
+    }
+    CHECK(rig.p.frames_tail);
+    CHECK(expect_code("FORMAT GCODE", 0));
+    CHECK(!next_line(l, sizeof l, 50));
+    CHECK(!rig.p.frames_tail);
+    /* once a text command ran, 0x06 is plain noise at once */
+    hal_mem_feed(&rig.m, noise, 2);
+    CHECK(next_line(l, sizeof l, 5));
+    CHECK(strncmp(l, "error:8 ", 8) == 0);
+    CHECK(!next_line(l, sizeof l, 50));
     return 0;
 }
 
