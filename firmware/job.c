@@ -4,7 +4,38 @@
 #include "job.h"
 #include "parse.h"
 
-#define JOB_MAX_TOKENS 12u
+/* The models other than the canal (path.h: how to add a model). Direct calls, no
+ * function pointers, so the static stack analysis sees every path. */
+
+/* have bits RUN needs, per enum path_kind (0: the model is not compiled in) */
+static const uint16_t need[PATH_KINDS] = {
+    JOB_HAVE_ALL, /* PATH_CANAL */
+    0u,           /* PATH_GSR */
+    0u,           /* PATH_CHANNEL */
+    0u            /* PATH_DRC */
+};
+
+/* Model k's command hook (job_model_fn semantics), or JOB_NOT_MINE / 0 when the
+ * model is not compiled in. */
+static int model_command(unsigned k, struct job *j, const struct job_line *l)
+{
+    (void)j;
+    (void)l;
+    switch (k) {
+    default:
+        return j == NULL ? 0 : JOB_NOT_MINE;
+    }
+}
+
+/* SURFACE <k>: model k's geometry starts afresh. */
+static void model_defaults(unsigned k, union path_geom *g)
+{
+    switch (k) {
+    default:
+        g->none = 0;
+        break;
+    }
+}
 
 void job_init(struct job *j)
 {
@@ -32,26 +63,58 @@ void job_init(struct job *j)
     j->feed = CP_R(0.0);
     j->rxbuf = 128u;
     j->have = 0;
+    j->kind = PATH_CANAL;
+    j->geom.none = 0;
     j->format = JOB_GCODE;
     j->checksum = 0;
 }
 
+int job_ready(const struct job *j)
+{
+    uint16_t nd = j->kind < PATH_KINDS ? need[j->kind] : 0u;
+    return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
+}
+
 int job_is_command(const char *line, size_t len)
 {
-    static const char *const kw[13] = {"CURVE",    "RADIUS", "TOOL",  "LINES",  "CIRCLES",
-                                       "STEPS",    "TOL",    "FEED",  "FORMAT", "RXBUF",
-                                       "CHECKSUM", "RUN",    "RESUME"};
+    static const char *const kw[14] = {"CURVE", "RADIUS",   "TOOL",    "LINES", "CIRCLES",
+                                       "STEPS", "TOL",      "FEED",    "FORMAT", "RXBUF",
+                                       "CHECKSUM", "SURFACE", "RUN",   "RESUME"};
+    uint16_t st = 0, ln;
+    struct job_line l;
     size_t n = 0;
     unsigned i;
     while (n < len && line[n] != ' ') {
         n++;
     }
-    for (i = 0; i < 13u; i++) {
+    for (i = 0; i < 14u; i++) {
         if (parse_is(line, n, kw[i])) {
             return 1;
         }
     }
+    ln = (uint16_t)(n < 0xFFFFu ? n : 0xFFFFu);
+    l.s = line;
+    l.st = &st;
+    l.ln = &ln;
+    l.nt = n > 0u ? 1u : 0u;
+    for (i = 0; i < PATH_KINDS && l.nt > 0u; i++) {
+        if (model_command(i, NULL, &l) == 1) {
+            return 1;
+        }
+    }
     return 0;
+}
+
+int job_numbers(const struct job_line *l, unsigned first, unsigned n, cp_real *v)
+{
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        int s = parse_real(l->s + l->st[first + i], l->ln[first + i], &v[i]);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+    }
+    return CP_ST_OK;
 }
 
 int job_status_of(int err)
@@ -212,6 +275,44 @@ int job_command(struct job *j, const char *line, size_t len)
     int s;
     if (nt == 0u) {
         return JOB_NOT_MINE;
+    }
+    if (parse_is(w0, l0, "SURFACE")) {
+        static const char *const names[PATH_KINDS] = {"CANAL", "GSR", "CHANNEL", "DRC"};
+        unsigned k;
+        if (nt != 2u) {
+            return CP_ST_BAD_ARITY;
+        }
+        for (k = 0; k < PATH_KINDS; k++) {
+            if (parse_is(line + st[1], ln[1], names[k]) && need[k] != 0u) {
+                break;
+            }
+        }
+        if (k == PATH_KINDS) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        if (k != PATH_CANAL) {
+            /* that model's geometry starts afresh (the union holds one model) */
+            j->have &= (uint16_t)(JOB_HAVE_ALL);
+            model_defaults(k, &j->geom);
+        }
+        j->kind = (uint8_t)k;
+        return CP_ST_OK;
+    }
+    {
+        struct job_line l;
+        unsigned k;
+        l.s = line;
+        l.st = st;
+        l.ln = ln;
+        l.nt = nt > JOB_MAX_TOKENS ? JOB_MAX_TOKENS : nt;
+        for (k = 0; k < PATH_KINDS; k++) {
+            if (model_command(k, NULL, &l) == 1) {
+                if (nt > JOB_MAX_TOKENS) {
+                    return CP_ST_BAD_ARITY;
+                }
+                return j->kind == k ? model_command(k, j, &l) : CP_ST_WRONG_SURFACE;
+            }
+        }
     }
     if (parse_is(w0, l0, "CURVE")) {
         return nt > JOB_MAX_TOKENS ? CP_ST_BAD_ARITY : cmd_curve(j, line, st, ln, nt);

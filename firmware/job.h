@@ -14,21 +14,31 @@
  *   FORMAT GCODE | FRAMES
  *   RXBUF n                   the machine's RX buffer for character counting (32..1024, default
  * 128) CHECKSUM ON | OFF         Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
+ *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL); a new
+ *                             SURFACE starts that model's geometry afresh (path.h)
  * Every command validates its arguments at once; the geometry is validated at RUN
  * (toolpath_init), each failure with its own wire status (cp_status.def).
+ * A model's own geometry commands (job_<m>.c) need its SURFACE first (error:24).
  */
 #ifndef JOB_H
 #define JOB_H
 
 #include "cp_status.h"
-#include "toolpath.h"
+#include "path.h"
 
 enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 
 #define JOB_HAVE_CURVE 0x01u
 #define JOB_HAVE_RADIUS 0x02u
 #define JOB_HAVE_RASTER 0x04u
-#define JOB_HAVE_ALL 0x07u
+#define JOB_HAVE_ALL 0x07u /* what the canal needs */
+/* have bits of the other models' geometry commands (their `need` in job.c) */
+#define JOB_HAVE_GSR_MASK 0x0038u     /* 0x0008, 0x0010, 0x0020 */
+#define JOB_HAVE_CHANNEL_MASK 0x01C0u /* 0x0040, 0x0080, 0x0100 */
+#define JOB_HAVE_DRC_MASK 0x0E00u     /* 0x0200, 0x0400, 0x0800 */
+
+/* Most tokens of one command line (keyword included). */
+#define JOB_MAX_TOKENS 20u
 
 #define JOB_RXBUF_MIN 96u /* >= the longest stream line (proto.h PROTO_GCODE_MAX) */
 #define JOB_RXBUF_MAX 1024u
@@ -39,13 +49,32 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 #define JOB_NOT_MINE (-1)
 
 struct job {
-    struct toolpath_cfg cfg; /* geometry and raster, C units (radians) */
+    struct toolpath_cfg cfg; /* raster (every model) and canal geometry, C units (radians) */
+    union path_geom geom;    /* geometry of the other models (the one of `kind`) */
     cp_real feed;            /* mm/min, 0 = omit F */
     uint16_t rxbuf;          /* machine RX buffer, bytes */
-    uint8_t have;            /* JOB_HAVE_* bits */
+    uint16_t have;           /* JOB_HAVE_* bits */
+    uint8_t kind;            /* enum path_kind (SURFACE), default PATH_CANAL */
     uint8_t format;          /* enum job_format */
     uint8_t checksum;        /* 1: N<n> ... *<cs> line numbers and checksums */
 };
+
+/* One tokenised command line, for the models' command hooks: token i is
+ * s[st[i] .. st[i] + ln[i]), i < nt (nt <= JOB_MAX_TOKENS). */
+struct job_line {
+    const char *s;
+    const uint16_t *st, *ln;
+    unsigned nt;
+};
+
+/* Parse tokens first..first+n-1 of l as numbers into v[]. Returns a wire status. */
+int job_numbers(const struct job_line *l, unsigned first, unsigned n, cp_real *v);
+
+/* A model's command hook, int job_<m>_command(struct job *j, const struct
+ * job_line *l), called directly from job.c's model_command(). With j == NULL: 1
+ * if l's first token is one of the model's keywords, else 0. Otherwise: apply the
+ * command to j->geom (j->kind is the model's; set its JOB_HAVE_* bits) and return
+ * a wire status. */
 
 /* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE. */
 void job_init(struct job *j);
@@ -54,7 +83,11 @@ void job_init(struct job *j);
  * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE. */
 int job_command(struct job *j, const char *line, size_t len);
 
-/* 1 if the line starts with a job command keyword (CURVE ... CHECKSUM, RUN, RESUME). */
+/* CP_ST_OK if the job has everything its SURFACE needs, else CP_ST_NO_JOB. */
+int job_ready(const struct job *j);
+
+/* 1 if the line starts with a job command keyword (CURVE ... CHECKSUM, SURFACE, a
+ * model's keyword, RUN, RESUME). */
 int job_is_command(const char *line, size_t len);
 
 /* Wire status of an enum cp_err returned by toolpath_init. */

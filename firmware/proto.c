@@ -62,7 +62,8 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     p->tail_len = 0;
     p->tail_rep = 0;
     p->tail_t = 0;
-    p->tp.count = 0;
+    p->path.kind = PATH_CANAL;
+    p->path.info.count = 0;
     frame_rx_init(&p->frx);
     return CP_OK;
 }
@@ -145,16 +146,16 @@ static void reply_report(struct proto *p)
         uint32_t npts = p->end - (p->fmt == JOB_GCODE ? p->hdr : 2u);
         sent = items > npts ? npts : items;
         {
-            uint32_t k = p->start_k + sent, block = (uint32_t)p->tp.steps + 1u + p->tp.link;
+            uint32_t k = p->start_k + sent, block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
             tx_str(p, "|L:");
             tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
             tx_str(p, "/");
-            tx_u32(p, p->tp.n);
+            tx_u32(p, p->path.info.n);
         }
         tx_str(p, "|P:");
         tx_u32(p, p->start_k + sent);
         tx_str(p, "/");
-        tx_u32(p, toolpath_count(&p->tp));
+        tx_u32(p, path_count(&p->path));
     }
     tx_str(p, ">\n");
 }
@@ -190,21 +191,20 @@ static int run_start(struct proto *p, uint32_t first)
 {
     int err;
     uint32_t npts;
-    if ((p->job.have & JOB_HAVE_ALL) != JOB_HAVE_ALL) {
+    if (job_ready(&p->job) != CP_ST_OK) {
         return CP_ST_NO_JOB;
     }
-    err = toolpath_init(&p->tp, &p->job.cfg);
+    err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
     if (err != CP_OK) {
-        p->tp.count = 0;
         return job_status_of(err);
     }
-    if (first >= toolpath_count(&p->tp)) {
+    if (first >= path_count(&p->path)) {
         return CP_ST_RESUME_RANGE;
     }
-    if (first > 0u && toolpath_seek(&p->tp, first) != CP_OK) {
+    if (first > 0u && path_seek(&p->path, first) != CP_OK) {
         return CP_ST_RESUME_RANGE;
     }
-    npts = toolpath_count(&p->tp) - first;
+    npts = path_count(&p->path) - first;
     p->fmt = p->job.format;
     p->start_k = first;
     p->next = 0;
@@ -226,15 +226,15 @@ static int run_start(struct proto *p, uint32_t first)
         /* what the stream will hold, for hosts and judges (a G-code machine skips
          * '[' lines; this one is not counted against its RX buffer) */
         tx_str(p, "[RUN:points=");
-        tx_u32(p, toolpath_count(&p->tp));
+        tx_u32(p, path_count(&p->path));
         tx_str(p, ",first=");
         tx_u32(p, first);
-        tx_str(p, p->tp.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=");
-        tx_u32(p, p->tp.n);
+        tx_str(p, p->path.info.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=");
+        tx_u32(p, p->path.info.n);
         tx_str(p, ",steps=");
-        tx_u32(p, p->tp.steps);
+        tx_u32(p, p->path.info.steps);
         tx_str(p, ",link=");
-        tx_u32(p, p->tp.link);
+        tx_u32(p, p->path.info.link);
         tx_str(p, "]\n");
     }
     return CP_ST_OK;
@@ -243,10 +243,10 @@ static int run_start(struct proto *p, uint32_t first)
 /* Position the iterator on point k and fetch it. */
 static int point_at(struct proto *p, uint32_t k, struct toolpath_pt *pt)
 {
-    if (p->tp.k != k && toolpath_seek(&p->tp, k) != CP_OK) {
+    if (path_pos(&p->path) != k && path_seek(&p->path, k) != CP_OK) {
         return CP_ERR_RANGE;
     }
-    return toolpath_next(&p->tp, pt);
+    return path_next(&p->path, pt);
 }
 
 /* Round to an integer count of `scale` units: deterministic (floor is exact). */
@@ -307,12 +307,12 @@ static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
     uint8_t pl[FRAME_POINT_PAYLOAD];
     uint32_t npts = p->end - 2u;
     if (idx == 0u) {
-        frame_put_u32(pl, toolpath_count(&p->tp));
+        frame_put_u32(pl, path_count(&p->path));
         frame_put_u32(pl + 4, p->start_k);
-        frame_put_u16(pl + 8, p->tp.n);
-        frame_put_u16(pl + 10, p->tp.steps);
-        frame_put_u16(pl + 12, p->tp.link);
-        pl[14] = p->tp.mode;
+        frame_put_u16(pl + 8, p->path.info.n);
+        frame_put_u16(pl + 10, p->path.info.steps);
+        frame_put_u16(pl + 12, p->path.info.link);
+        pl[14] = p->path.info.mode;
         return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 15u, out, cap);
     }
     if (idx <= npts) {

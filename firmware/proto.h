@@ -101,7 +101,7 @@ struct proto {
     int err;                 /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
     /* job and run */
     struct job job;            /* the job being assembled / run */
-    struct toolpath tp;        /* the validated toolpath of the current run */
+    struct path path;          /* the validated toolpath of the current run (any model) */
     uint8_t state;             /* enum proto_state */
     uint8_t fmt;               /* enum job_format of the current run */
     uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */

@@ -246,7 +246,7 @@ int test_stream_gcode(void)
     if (r != 0) {
         return r;
     }
-    CHECK_EQ_INT(pts, toolpath_count(&rig.p.tp));
+    CHECK_EQ_INT(pts, path_count(&rig.p.path));
     CHECK(rig.p.state == PROTO_IDLE);
     /* the firmware is ready for the next command */
     CHECK(expect_code("$I", 0));
@@ -256,7 +256,7 @@ int test_stream_gcode(void)
     if (r != 0) {
         return r;
     }
-    CHECK_EQ_INT(pts, toolpath_count(&rig.p.tp) - 50u);
+    CHECK_EQ_INT(pts, path_count(&rig.p.path) - 50u);
     CHECK(expect_code("RESUME 999999", CP_ST_RESUME_RANGE));
     return 0;
 }
@@ -276,7 +276,7 @@ int test_stream_checksum(void)
         return r;
     }
     CHECK_EQ_INT(resends, 1);
-    CHECK_EQ_INT(pts, toolpath_count(&rig.p.tp));
+    CHECK_EQ_INT(pts, path_count(&rig.p.path));
     return 0;
 }
 
@@ -487,7 +487,7 @@ static int frames_run(void)
     }
     CHECK(done);
     CHECK(naked);
-    CHECK_EQ_INT(pts, toolpath_count(&rig.p.tp));
+    CHECK_EQ_INT(pts, path_count(&rig.p.path));
     /* the final text reply */
     rig.m.out_len = rig.scan = 0;
     CHECK(next_line(l, sizeof l, 2000));
@@ -586,6 +586,75 @@ int test_stream_resend_out_of_sync(void)
     }
     CHECK(got);
     CHECK(rig.p.state == PROTO_IDLE);
+    CHECK(expect_code("$I", 0));
+    return 0;
+}
+
+/* SURFACE selects the model RUN streams; a model not compiled in is refused; the
+ * canal is the default and SURFACE CANAL keeps its geometry. */
+int test_stream_surface(void)
+{
+    static const char *const kinds[3] = {"GSR", "CHANNEL", "DRC"};
+    static const int have[3] = {PATH_HAVE_GSR, PATH_HAVE_CHANNEL, PATH_HAVE_DRC};
+    char l[160];
+    unsigned i;
+    rig_init();
+    CHECK(rig.p.job.kind == PATH_CANAL);
+    CHECK(expect_code("SURFACE", CP_ST_BAD_ARITY));
+    CHECK(expect_code("SURFACE CANAL EXTRA", CP_ST_BAD_ARITY));
+    CHECK(expect_code("SURFACE TORUS", CP_ST_BAD_KEYWORD));
+    CHECK(load(paper_job));
+    for (i = 0; i < 3u; i++) {
+        char cmd[32];
+        snprintf(cmd, sizeof cmd, "SURFACE %s", kinds[i]);
+        CHECK(expect_code(cmd, have[i] ? CP_ST_OK : CP_ST_BAD_KEYWORD));
+        if (have[i]) {
+            CHECK(rig.p.job.kind == i + 1u);
+            CHECK(expect_code("RUN", CP_ST_NO_JOB)); /* its geometry starts empty */
+        }
+    }
+    CHECK(expect_code("surface canal", CP_ST_OK));
+    CHECK(rig.p.job.kind == PATH_CANAL);
+    CHECK(expect_code("STEPS 4", CP_ST_OK));
+    host_send("RUN\n");
+    CHECK(next_line(l, sizeof l, 200));
+    CHECK(strncmp(l, "[RUN:points=", 12) == 0);
+    return 0;
+}
+
+/* A machine that never answers during a GCODE run: the firmware sends what fits its
+ * RX buffer, then stops with error:22 once nothing was acknowledged for
+ * PROTO_PEER_TIMEOUT_MS, and answers commands again. */
+int test_stream_silent_machine(void)
+{
+    char l[160];
+    int i, g1 = 0, got = 0;
+    size_t bytes = 0;
+    rig_init();
+    rig.m.tick_ms = 7; /* a few now_ms calls per poll: the timeout passes in ~1000 polls */
+    CHECK(load(paper_job));
+    CHECK(expect_code("RXBUF 128", 0));
+    host_send("RUN\n");
+    for (i = 0; i < 200 && next_line(l, sizeof l, 4000); i++) {
+        if (strncmp(l, "G1 ", 3) == 0 || strncmp(l, "G21", 3) == 0) {
+            g1++;
+            bytes += strlen(l) + 1u;
+            continue;
+        }
+        if (l[0] == '[') {
+            continue;
+        }
+        CHECK(strncmp(l, "error:22 ", 9) == 0);
+        got = 1;
+        break;
+    }
+    CHECK(got);
+    CHECK(g1 > 0);
+    CHECK(bytes <= 128u); /* never more than the machine's RX buffer unacknowledged */
+    CHECK(rig.p.state == PROTO_IDLE);
+    CHECK(rig.m.now >= PROTO_PEER_TIMEOUT_MS);
+    printf("  note: silent machine: %d lines (%u bytes) in flight, error:22 at %u ms\n", g1,
+           (unsigned)bytes, (unsigned)rig.m.now);
     CHECK(expect_code("$I", 0));
     return 0;
 }

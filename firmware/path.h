@@ -1,0 +1,98 @@
+/* path.h - the toolpath source of a run, whatever the surface model.
+ * SPDX-License-Identifier: MIT
+ *
+ * The stream (proto.c) pulls points from one `struct path`: a tagged union of the
+ * models' iterators, each yielding exactly path_count() `struct toolpath_pt` with
+ * the conventions of toolpath.h (zigzag lines, link points, fixed counts decided
+ * at init, seek(k) reproducing point k bit for bit). The raster request (mode,
+ * n, u0, u1, steps/tol, link, tool, output) is the job's `struct toolpath_cfg`
+ * for every model; the canal model also takes its geometry from it (cfg.surf),
+ * the other models from `union path_geom`.
+ *
+ * Models (SURFACE command, docs/PROTOCOL.md):
+ *   PATH_CANAL    canal surface touching the floor along a plane curve (seed 000)
+ *   PATH_GSR      generalized surface of revolution (seed 003)        [issue 7]
+ *   PATH_CHANNEL  channel surface from cross-sections (seed 002)      [issue 5]
+ *   PATH_DRC      discretely represented curve, thickened (seed 001)  [issue 6]
+ * A kind whose model is not compiled in is refused by SURFACE (error:9).
+ *
+ * HOW TO ADD A MODEL <m> (kind PATH_<M>):
+ *   1. firmware/<m>.h: struct <m>_cfg (geometry, plain data) and an iterator
+ *      struct <m>_path with
+ *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
+ *                               const struct toolpath_cfg *raster);
+ *        uint32_t <m>_path_count(const struct <m>_path *);
+ *        int      <m>_path_next(struct <m>_path *, struct toolpath_pt *);
+ *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
+ *      and fields or accessors for k (points emitted), n, steps, link, mode.
+ *   2. here: include <m>.h, add the cfg to union path_geom and the iterator to
+ *      struct path's union, and set PATH_HAVE_<M> to 1.
+ *   3. path.c: one case in each switch (init, count, next, seek, info).
+ *   4. firmware/job_<m>.c: int job_<m>_command(struct job *, const struct
+ *      job_line *) (job.h) and a defaults function; in job.c one case each in
+ *      model_command() and model_defaults(), and need[PATH_<M>] = the have bits
+ *      RUN needs (job.h JOB_HAVE_<M>_MASK). Its cp_err codes map to wire codes
+ *      (appended to cp_status.def) in job_status_of().
+ *   5. docs/PROTOCOL.md: the commands; host_sim: a judge of the model's stream.
+ */
+#ifndef PATH_H
+#define PATH_H
+
+#include "toolpath.h"
+
+enum path_kind {
+    PATH_CANAL = 0,
+    PATH_GSR = 1,
+    PATH_CHANNEL = 2,
+    PATH_DRC = 3,
+    PATH_KINDS = 4
+};
+
+/* 1 when the model is compiled in (SURFACE accepts it). */
+#define PATH_HAVE_GSR 0
+#define PATH_HAVE_CHANNEL 0
+#define PATH_HAVE_DRC 0
+
+/* Geometry of the models other than the canal (the canal's is toolpath_cfg.surf). */
+union path_geom {
+    uint8_t none; /* no other model compiled in */
+};
+
+/* What the stream header tells the host (BEGIN frame, [RUN:...] line). */
+struct path_info {
+    uint32_t count; /* points of the whole path */
+    uint16_t n;     /* lines or circles/rings */
+    uint16_t steps; /* steps per line (points per line = steps + 1) */
+    uint16_t link;  /* link points between consecutive lines */
+    uint8_t mode;   /* enum toolpath_mode: 0 lines, 1 circles/rings */
+};
+
+struct path {
+    uint8_t kind;          /* enum path_kind of the initialised iterator */
+    struct path_info info; /* valid after a successful path_init */
+    union {
+        struct toolpath canal;
+    } u;
+};
+
+/* Initialise the iterator of model `kind` on the raster (and, for the canal, the
+ * geometry) in `raster` and the geometry in `geom` (NULL for the canal).
+ * Errors: CP_ERR_INVAL for a kind that is not compiled in, else the model's init
+ * codes (toolpath_init for the canal). On error p->info.count is 0. */
+CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
+                            const union path_geom *geom);
+
+/* Total number of points (0 before a successful init). */
+uint32_t path_count(const struct path *p);
+
+/* Points emitted so far (the k of the next path_next). */
+uint32_t path_pos(const struct path *p);
+
+/* The next point. Returns CP_OK, or CP_ERR_DONE after path_count() points. */
+int path_next(struct path *p, struct toolpath_pt *pt);
+
+/* Restart at point k (0 <= k <= count): the next path_next yields exactly what it
+ * yielded the first time at k. Returns CP_OK or CP_ERR_RANGE. */
+CP_MUST_CHECK int path_seek(struct path *p, uint32_t k);
+
+#endif /* PATH_H */
