@@ -50,9 +50,10 @@
 #define CP_MAX_LINK 64
 #endif
 
-/* Byte budget of the complete canal toolpath context (struct toolpath), float build. */
+/* Byte budget of the complete canal toolpath context (struct toolpath), float build
+ * (256 B of it are the two line-label tables, toolpath.h). */
 #ifndef CP_TOOLPATH_BUDGET
-#define CP_TOOLPATH_BUDGET 256
+#define CP_TOOLPATH_BUDGET 448
 #endif
 
 #if CP_LINE_MAX < 16 || CP_LINE_MAX > 250
