@@ -446,18 +446,7 @@ cp_real canal_g(const struct canal_jet *j)
 void canal_point(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off,
                  struct canal_point *out)
 {
-    cp_real rr = f->r - rad_off;
-    cp_real pb = f->p * b;
-    cp_real w = CP_R(2.0) * b / (f->q2 * b * b + h * h);
-    cp_real nx = w * (-pb * f->tx - h * f->ty);
-    cp_real ny = w * (-pb * f->ty + h * f->tx);
-    cp_real wb = w * b;
-    out->n.x = nx;
-    out->n.y = ny;
-    out->n.z = wb - CP_R(1.0);
-    out->m.x = f->x + rr * nx;
-    out->m.y = f->y + rr * ny;
-    out->m.z = rad_off + rr * wb;
+    canal_point_inline(f, h, b, rad_off, out);
 }
 
 cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off)

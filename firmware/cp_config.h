@@ -51,9 +51,9 @@
 #endif
 
 /* Byte budget of the complete canal toolpath context (struct toolpath), float build
- * (256 B of it are the two line-label tables, toolpath.h). */
+ * (the double build may use twice this). */
 #ifndef CP_TOOLPATH_BUDGET
-#define CP_TOOLPATH_BUDGET 448
+#define CP_TOOLPATH_BUDGET 256
 #endif
 
 #if CP_LINE_MAX < 16 || CP_LINE_MAX > 250

@@ -23,6 +23,14 @@ cp_real cp_atan2(cp_real y, cp_real x)
 
 void cp_sincos(cp_real x, cp_real *s, cp_real *c)
 {
+    if (!(x >= -CP_SINCOS_XMAX && x <= CP_SINCOS_XMAX)) {
+        if (x != x) {
+            *s = x;
+            *c = x;
+            return;
+        }
+        x = x > 0.0f ? CP_SINCOS_XMAX : -CP_SINCOS_XMAX;
+    }
     cp_sincos_kernel(x, s, c);
 }
 

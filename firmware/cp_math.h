@@ -15,11 +15,38 @@
 /* sin and cos of x (radians). Float build: |x| <= 1e4, absolute error <= 2 ulp
  * of 1 (about 1.2e-7) after Cody-Waite reduction by pi/2 in three parts and
  * degree-9/10 Taylor kernels on [-pi/4, pi/4] (truncation < 2e-9).
- * Out-of-range |x| is reduced anyway (accuracy degrades, never non-finite for
- * finite x). */
+ * |x| > CP_SINCOS_XMAX is clamped to +-CP_SINCOS_XMAX (a finite, meaningless
+ * result, never non-finite for finite x); NaN gives NaN. */
 void cp_sincos(cp_real x, cp_real *s, cp_real *c);
 
+/* The sincos kernel in two stages, so a caller can spread one evaluation over two
+ * calls (toolpath.c makes the next line's label over the last two points of a line):
+ * cp_sincos_stage1 (argument reduction and the sine polynomial) then
+ * cp_sincos_stage2 (the cosine polynomial and the quadrant). The pair performs
+ * exactly the operations of cp_sincos_kernel on the same float values, so the
+ * result is bit-identical to cp_sincos(x) however far apart the stages run. */
+/* Largest |x| the kernel and its stages take as is (float build). */
+#define CP_SINCOS_XMAX CP_R(1.0e5)
+
+struct cp_sincos_st {
+    cp_real a, b; /* float: r^2 and the sine polynomial; double: x */
+    int32_t k;    /* float: quadrant count */
+};
+
 #if CP_REAL_DOUBLE
+static inline void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st)
+{
+    st->a = x;
+    st->b = 0.0;
+    st->k = 0;
+}
+
+static inline void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s, cp_real *c)
+{
+    *s = sin(st->a);
+    *c = cos(st->a);
+}
+
 static inline void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
 {
     *s = sin(x);
@@ -35,32 +62,41 @@ static inline void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
  * the last term and the two subtractions: |r error| <= 2 ulp(pi/4) ~ 1.2e-7.
  * Kernels on |r| <= pi/4: sin by Taylor to r^9 (truncation r^11/11! < 1.7e-9),
  * cos to r^10 (truncation r^12/12! < 1.2e-10), Horner in float: a few ulp of 1. */
-static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
+/* Precondition of the kernel and its stages: |x| <= CP_SINCOS_XMAX (cp_sincos clamps;
+ * the jet's argument is bounded by canal_init's CANAL_COORD_MAX = 1e4). */
+static CP_ALWAYS_INLINE void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st)
 {
     const float two_over_pi = 0.636619772f;
     const float p1 = 1.5703125f;
     const float p2 = 4.837512969970703125e-4f;
     const float p3 = 7.54978995489e-8f;
+    const float round_magic = 12582912.0f; /* 1.5 2^23: (v + M) - M = v rounded to even */
     float kf = x * two_over_pi;
     int32_t k;
-    float r, r2, sr, cr;
-    kf = (kf >= 0.0f) ? (kf + 0.5f) : (kf - 0.5f);
-    if (kf > 2147483520.0f) {
-        kf = 2147483520.0f;
-    } else if (kf < -2147483520.0f) {
-        kf = -2147483520.0f;
-    }
-    k = (int32_t)kf; /* truncation of (v +- 0.5): round half away from zero */
-    kf = (float)k;
+    float r, r2;
+    /* |x| <= CP_SINCOS_XMAX: |kf| <= 6.4e4 << 2^22, so kf + M lands in [2^23, 2^24)
+     * where the float spacing is 1: the sum is kf rounded to the nearest integer, and
+     * the difference is exact (-ffp-contract=off keeps both roundings). */
+    kf = (kf + round_magic) - round_magic;
+    k = (int32_t)kf;
     r = ((x - kf * p1) - kf * p2) - kf * p3;
     r2 = r * r;
-    sr = r + r * r2 *
-                 (-1.66666667e-1f +
-                  r2 * (8.33333333e-3f + r2 * (-1.98412698e-4f + r2 * 2.75573192e-6f)));
-    cr = 1.0f +
-         r2 * (-0.5f + r2 * (4.16666667e-2f + r2 * (-1.38888889e-3f +
-                                                    r2 * (2.48015873e-5f + r2 * -2.75573192e-7f))));
-    switch ((uint32_t)k & 3u) {
+    st->a = r2;
+    st->b = r + r * r2 *
+                    (-1.66666667e-1f +
+                     r2 * (8.33333333e-3f + r2 * (-1.98412698e-4f + r2 * 2.75573192e-6f)));
+    st->k = k;
+}
+
+static CP_ALWAYS_INLINE void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s,
+                                              cp_real *c)
+{
+    float r2 = st->a, sr = st->b;
+    float cr = 1.0f +
+               r2 * (-0.5f + r2 * (4.16666667e-2f +
+                                   r2 * (-1.38888889e-3f +
+                                         r2 * (2.48015873e-5f + r2 * -2.75573192e-7f))));
+    switch ((uint32_t)st->k & 3u) {
     case 0u:
         *s = sr;
         *c = cr;
@@ -78,6 +114,13 @@ static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
         *c = sr;
         break;
     }
+}
+
+static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
+{
+    struct cp_sincos_st st;
+    cp_sincos_stage1(x, &st);
+    cp_sincos_stage2(&st, s, c);
 }
 
 #endif

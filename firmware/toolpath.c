@@ -94,7 +94,7 @@ static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct
                                          cp_real h, cp_real b, struct canal_point *out)
 {
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
-    canal_point(f, h, b, off, out);
+    canal_point_inline(f, h, b, off, out);
     if (tp->output == TOOLPATH_OUT_TIP) {
         out->m.z -= tp->tool_r;
     }
@@ -144,38 +144,28 @@ static cp_real line_u0(const struct toolpath *tp, uint32_t j)
     return tp->u0 + (tp->u1 - tp->u0) * ((cp_real)j / (cp_real)(tp->n - 1u));
 }
 
+/* Half start angle x_j = u0 / 2 + j d of family-2 line j (ANGLE labels), d = lab_d.
+ * The one formula every caller uses, so a label is the same bits whenever it is made. */
+static cp_real line_half_angle(const struct toolpath *tp, uint32_t j)
+{
+    return CP_R(0.5) * tp->u0 + (cp_real)j * tp->lab_d;
+}
+
 /* Label of family-2 line j (LINES; also the init walk), the same as
- * first_label(line_u0(j)) up to rounding. With ANGLE labels: one complex product of
- * the two tables made at init (toolpath.h). Error: each table entry is a cp_sincos
- * result (<= 1.2e-7 absolute in float), the product adds 2 roundings, so the
- * half-angle direction is off by <= ~4e-7 rad: <= 8 nm on a 10 mm radius - within
+ * first_label(line_u0(j)) up to rounding: (q0 cos x_j, sin x_j). Error: x_j carries
+ * <= 2 roundings (~2.4e-7 rad relative to |x| <= pi/2) and cp_sincos <= 1.2e-7, so
+ * the half-angle direction is off by <= ~4e-7 rad: <= 8 nm on a 10 mm radius - within
  * the float floor and measured by the reference tests. */
 static void line_label(const struct toolpath *tp, uint32_t j, cp_real *alpha, cp_real *b)
 {
-    const cp_real *hi, *lo;
+    cp_real sn, cs;
     if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
         first_label(tp, line_u0(tp, j), alpha, b);
         return;
     }
-    hi = tp->lab_hi[(j / TOOLPATH_LAB_SPLIT) % TOOLPATH_LAB_SPLIT];
-    lo = tp->lab_lo[j % TOOLPATH_LAB_SPLIT];
-    *alpha = tp->q0 * (hi[0] * lo[0] - hi[1] * lo[1]);
-    *b = hi[1] * lo[0] + hi[0] * lo[1];
-}
-
-/* The two label tables (ANGLE labels), entries that line indexes < n use. */
-static void label_tables(struct toolpath *tp)
-{
-    cp_real d = CP_R(0.0);
-    uint32_t i;
-    if (tp->n > 1u) {
-        d = CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->n - 1u);
-    }
-    for (i = 0; i < TOOLPATH_LAB_SPLIT; i++) {
-        cp_real x = CP_R(0.5) * tp->u0 + (cp_real)(i * TOOLPATH_LAB_SPLIT) * d;
-        cp_sincos(x, &tp->lab_hi[i][1], &tp->lab_hi[i][0]);
-        cp_sincos((cp_real)i * d, &tp->lab_lo[i][1], &tp->lab_lo[i][0]);
-    }
+    cp_sincos(line_half_angle(tp, j), &sn, &cs);
+    *alpha = tp->q0 * cs;
+    *b = sn;
 }
 
 /* Label (h, b) at frame f (Lambda = lam) of the CIRCLES-mode boundary u: the family-2
@@ -661,7 +651,8 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     canal_frame(&j, &f);
     tp->q0 = cp_sqrt(f.q2);
     tp->r0 = j.r;
-    label_tables(tp);
+    tp->lab_d = tp->n > 1u ? CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->n - 1u) : CP_R(0.0);
+    tp->st_line = -1;
     panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
     if (tp->mode == TOOLPATH_LINES) {
         err = init_lines(tp, cfg, panels);
@@ -729,6 +720,18 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
     }
     tp->lab_line = -1;
     tp->lab2_line = -1;
+    tp->st_line = -1;
+    if (tp->mode == TOOLPATH_LINES && k < tp->count) {
+        /* make the labels of k's line and of the next line now, so that the stream
+         * itself never pays a whole label (seek is the resume path, not the hot one) */
+        uint32_t jl = k / ((uint32_t)tp->steps + 1u + tp->link);
+        line_label(tp, jl, &tp->lab_a, &tp->lab_b);
+        tp->lab_line = (int32_t)jl;
+        if (jl + 1u < tp->n) {
+            line_label(tp, jl + 1u, &tp->lab2_a, &tp->lab2_b);
+            tp->lab2_line = (int32_t)(jl + 1u);
+        }
+    }
     return CP_OK;
 }
 
@@ -769,9 +772,11 @@ static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal
 static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int line,
                                    uint32_t index, struct toolpath_pt *pt)
 {
-    /* one test covers all six: a NaN or Inf anywhere makes the sum non-finite, and
-     * finite components (|m| <= 1e4 mm, |n| <= 1) cannot overflow it */
-    if (!cp_isfinite(cp->m.x + cp->m.y + cp->m.z + cp->n.x + cp->n.y + cp->n.z)) {
+    /* one test covers all six: m = (x + rr nx, y + rr ny, off + rr wb) with n = (nx,
+     * ny, wb - 1) and rr = R - off >= rmin - tool_r > 0 (init), so a NaN or Inf in n
+     * makes the matching m component non-finite too; a NaN or Inf in m makes the sum
+     * non-finite, and finite components (|m| <= ~1e4 mm) cannot overflow it */
+    if (!cp_isfinite(cp->m.x + cp->m.y + cp->m.z)) {
         return CP_ERR_NUMERIC;
     }
     pt->p = cp->m;
@@ -782,11 +787,15 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
     return CP_OK;
 }
 
-/* Make the label of line jl current (taken from the next-line cache when it was made
- * ahead) and, with ahead, the label of line jl + 1 too. Spreading the label work this
- * way keeps every point's cost close to the mean (no point pays two sincos). */
-static void line_labels(struct toolpath *tp, uint32_t jl, int ahead)
+/* Labels of LINES mode, by position r (travel order) in line jl: at its first point
+ * the label of jl is taken from the next-line cache; at the point before its last the
+ * first half of line jl + 1's label is made (cp_sincos_stage1), at its last point the
+ * second half (stage2), so no point pays a whole sincos. A point whose cache is not
+ * ready (impossible after toolpath_seek, which makes both labels; kept as a guard)
+ * makes what it needs itself. LAMBDA labels need no sincos: made at once. */
+static void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r)
 {
+    uint32_t nx = jl + 1u;
     if (tp->lab_line != (int32_t)jl) {
         if (tp->lab2_line == (int32_t)jl) {
             tp->lab_a = tp->lab2_a;
@@ -796,9 +805,24 @@ static void line_labels(struct toolpath *tp, uint32_t jl, int ahead)
         }
         tp->lab_line = (int32_t)jl;
     }
-    if (ahead && jl + 1u < tp->n && tp->lab2_line != (int32_t)(jl + 1u)) {
-        line_label(tp, jl + 1u, &tp->lab2_a, &tp->lab2_b);
-        tp->lab2_line = (int32_t)(jl + 1u);
+    if (r + 1u < tp->steps || nx >= tp->n || tp->lab2_line == (int32_t)nx) {
+        return;
+    }
+    if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
+        line_label(tp, nx, &tp->lab2_a, &tp->lab2_b);
+        tp->lab2_line = (int32_t)nx;
+        return;
+    }
+    if (tp->st_line != (int32_t)nx) {
+        cp_sincos_stage1(line_half_angle(tp, nx), &tp->st);
+        tp->st_line = (int32_t)nx;
+    }
+    if (r >= tp->steps) {
+        cp_real sn, cs;
+        cp_sincos_stage2(&tp->st, &sn, &cs);
+        tp->lab2_a = tp->q0 * cs;
+        tp->lab2_b = sn;
+        tp->lab2_line = (int32_t)nx;
     }
 }
 
@@ -820,25 +844,26 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
         if (tp->surf.kappa_const) {
             /* constant curvature: exact Lambda, no quadrature state to march */
             canal_jet1(&tp->surf, t, &j);
+            canal_frame_pt(&j, &f);
             tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
             tp->node = 0xFFFFFFFFu;
-        } else if (r == 0u && !back) {
-            /* an even line starts at t0: exact Lambda = 0 */
-            struct quad q;
-            quad_reset(&tp->surf, &q, &j);
-            tp->node = 0u;
-            tp->lam = q.lam;
-            tp->comp = q.comp;
-            tp->g_node = q.g;
-        } else if (r == 0u) {
-            /* an odd line starts where the previous even line ended */
-            quad_to(tp, a, 0, &j);
         } else {
-            quad_to(tp, a, back, &j);
+            if (r == 0u && !back) {
+                /* an even line starts at t0: exact Lambda = 0 */
+                struct quad q;
+                quad_reset(&tp->surf, &q, &j);
+                tp->node = 0u;
+                tp->lam = q.lam;
+                tp->comp = q.comp;
+                tp->g_node = q.g;
+            } else {
+                /* an odd line starts (r = 0) where the previous even line ended */
+                quad_to(tp, a, r == 0u ? 0 : back, &j);
+            }
+            canal_frame_pt(&j, &f);
         }
-        canal_frame_pt(&j, &f);
-        if (tp->lab_line != (int32_t)jl || r == tp->steps) {
-            line_labels(tp, jl, r == tp->steps); /* a line's first and last points only */
+        if (tp->lab_line != (int32_t)jl || r + 1u >= tp->steps) {
+            line_labels(tp, jl, r); /* a line's first and last two points only */
         }
         al = tp->lab_a;
         bl = tp->lab_b;
@@ -861,7 +886,7 @@ static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
             quad_to(tp, a, back, &j);
         }
         canal_frame_pt(&j, &f);
-        line_labels(tp, jl, 1);
+        line_labels(tp, jl, r);
         label_lerp(&f, tp->lab_a + tp->lam * tp->lab_b, tp->lab_b,
                    tp->lab2_a + tp->lam * tp->lab2_b, tp->lab2_b,
                    (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);

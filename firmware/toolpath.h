@@ -32,6 +32,7 @@
 #define TOOLPATH_H
 
 #include "canal.h"
+#include "cp_math.h"
 
 enum toolpath_mode {
     TOOLPATH_LINES = 0,  /* family-2 curvature lines, linked along circles */
@@ -84,13 +85,6 @@ struct toolpath_cfg {
 
 #define TOOLPATH_LINK_AUTO 0xFFFFu
 
-/* Line labels are tabulated in two levels of this many entries: CP_MAX_LINES <= its
- * square. */
-#define TOOLPATH_LAB_SPLIT 16u
-#if CP_MAX_LINES > 256
-#error "CP_MAX_LINES > 256 needs a larger TOOLPATH_LAB_SPLIT"
-#endif
-
 /* Target error of Lambda's quadrature in position: 2 R_max |dLambda| <= this, mm. */
 #define TOOLPATH_LAMBDA_TOL CP_R(2.0e-5)
 
@@ -111,13 +105,14 @@ struct toolpath {
     cp_real lab_a, lab_b;
     int32_t lab2_line; /* line whose label is cached in lab2_a, lab2_b (the next line) */
     cp_real lab2_a, lab2_b;
+    /* LINES with ANGLE labels: the label of line j is (q0 cos x_j, sin x_j), x_j =
+     * u0 / 2 + j lab_d. The next line's label is made in two halves over the last two
+     * points of a line (cp_sincos_stage1, then stage2), so no point of the stream pays
+     * a whole sincos on top of its own work: the per-point cost stays flat. */
+    cp_real lab_d;
+    int32_t st_line; /* line whose label's first half is in st (-1: none) */
+    struct cp_sincos_st st;
     cp_real u0, u1, tool_r;
-    /* LINES with ANGLE labels: (cos, sin) of the half start angle of line j = 16 a + b,
-     * u_j / 2 = u0 / 2 + j d, as the product of lab_hi[a] = half angle u0 / 2 + 16 a d
-     * and lab_lo[b] = b d (d = (u1 - u0) / (2 (n - 1))): every line's label costs one
-     * complex product, never a sincos in the stream (the per-point cost stays flat) */
-    cp_real lab_hi[TOOLPATH_LAB_SPLIT][2];
-    cp_real lab_lo[TOOLPATH_LAB_SPLIT][2];
     cp_real hp;     /* half-panel width in t: output/node step = 2 substeps hp */
     cp_real q0;     /* q at t0 (labels) */
     cp_real r0;     /* R(t0): exact Lambda = kappa (R - r0) when the curvature of C is constant */

@@ -35,6 +35,33 @@ int test_math_kernels(void)
               CP_REAL_NAME);
     CHECK(worst_sc <= 4.0e-7);
     CHECK(worst_at <= 4.0e-7);
+    /* the two stages give the bits of cp_sincos (toolpath.c spreads a label's sincos
+     * over two points and relies on it), over the whole kernel range and at the
+     * rounding ties x 2/pi = m + 1/2 */
+    for (i = 0; i < 20000u; i++) {
+        double x = ((double)(test_prng(&st) % 2000001u) / 1000000.0 - 1.0) * 1.0e5;
+        struct cp_sincos_st sst;
+        cp_real s1, c1, s2, c2;
+        if (i < 64u) {
+            x = ((double)i - 31.5) * PI_D / 2.0;
+        }
+        cp_sincos((cp_real)x, &s1, &c1);
+        cp_sincos_stage1((cp_real)x, &sst);
+        cp_sincos_stage2(&sst, &s2, &c2);
+        CHECK(s1 == s2 && c1 == c2);
+        CHECK(fabs((double)s1 * (double)s1 + (double)c1 * (double)c1 - 1.0) < 1e-6);
+    }
+    {
+        /* beyond the kernel range: clamped, finite; NaN stays NaN */
+        cp_real s1, c1, nan_v = CP_R(0.0);
+        cp_sincos(CP_R(1.0e30), &s1, &c1);
+        CHECK(cp_isfinite(s1) && cp_isfinite(c1));
+        cp_sincos(-CP_R(1.0e30), &s1, &c1);
+        CHECK(cp_isfinite(s1) && cp_isfinite(c1));
+        nan_v = nan_v / nan_v;
+        cp_sincos(nan_v, &s1, &c1);
+        CHECK(s1 != s1 && c1 != c1);
+    }
     CHECK((double)cp_atan2(CP_R(0.0), CP_R(0.0)) == 0.0);
     CHECK(fabs((double)cp_atan2(CP_R(0.0), CP_R(-1.0)) - PI_D) < 4e-7);
     return 0;
@@ -239,6 +266,59 @@ int test_toolpath_deterministic(void)
         CHECK(pa.line == pb.line && pa.index == pb.index);
     }
     CHECK_EQ_INT(toolpath_seek(&b, toolpath_count(&b) + 1u), CP_ERR_RANGE);
+    return 0;
+}
+
+int test_toolpath_seek_stages(void)
+{
+    /* LINES labels are made in halves over the last two points of a line; seek makes
+     * them whole. Seek to EVERY k of short-line jobs (steps 1, 2, 3; links on and off;
+     * both label kinds) and compare the rest of the stream bit for bit with the
+     * uninterrupted one: a stage done twice, skipped or made for the wrong line shows */
+    static const uint16_t steps_v[3] = {1u, 2u, 3u};
+    static struct toolpath a, b;
+    static struct toolpath_pt ref[64];
+    struct toolpath_cfg cfg;
+    struct toolpath_pt pb;
+    unsigned sv, lk, lab, checked = 0u;
+    uint32_t k, m, cnt;
+    for (sv = 0; sv < 3u; sv++) {
+        for (lk = 0; lk < 2u; lk++) {
+            for (lab = 0; lab < 2u; lab++) {
+                paper_cfg(&cfg);
+                cfg.n = 5;
+                cfg.steps = steps_v[sv];
+                cfg.link = lk ? 2u : 0u;
+                cfg.tol = CP_R(0.0);
+                if (lab) {
+                    cfg.labels = TOOLPATH_LABEL_LAMBDA; /* w = 12..40: u = 9.5..2.9 deg */
+                    cfg.u0 = CP_R(12.0);
+                    cfg.u1 = CP_R(40.0);
+                }
+                CHECK_EQ_INT(toolpath_init(&a, &cfg), CP_OK);
+                cnt = toolpath_count(&a);
+                CHECK(cnt > 0u && cnt <= 64u);
+                for (k = 0; k < cnt; k++) {
+                    CHECK_EQ_INT(toolpath_next(&a, &ref[k]), CP_OK);
+                }
+                CHECK_EQ_INT(toolpath_next(&a, &pb), CP_ERR_DONE);
+                CHECK_EQ_INT(toolpath_init(&b, &cfg), CP_OK);
+                for (k = 0; k < cnt; k++) {
+                    CHECK_EQ_INT(toolpath_seek(&b, k), CP_OK);
+                    for (m = k; m < cnt; m++) {
+                        CHECK_EQ_INT(toolpath_next(&b, &pb), CP_OK);
+                        CHECK(pb.p.x == ref[m].p.x && pb.p.y == ref[m].p.y &&
+                              pb.p.z == ref[m].p.z && pb.n.x == ref[m].n.x &&
+                              pb.n.y == ref[m].n.y && pb.n.z == ref[m].n.z);
+                        CHECK(pb.line == ref[m].line && pb.index == ref[m].index);
+                        checked++;
+                    }
+                    CHECK_EQ_INT(toolpath_next(&b, &pb), CP_ERR_DONE);
+                }
+            }
+        }
+    }
+    TEST_NOTE("seek at every k of 12 short-line jobs: %u points bit-identical\n", checked);
     return 0;
 }
 
