@@ -129,4 +129,20 @@ static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
  * rad (octant reduction, then tan(pi/8) reduction and a degree-15 odd series). */
 cp_real cp_atan2(cp_real y, cp_real x);
 
+/* e^x. Float build: relative error <= 4 ulp (about 2.4e-7); x is clamped to
+ * [-87.3, 88.7] (results 1.2e-38 .. 3.4e38: never inf, never subnormal); NaN gives
+ * NaN. Double build: libm exp with x clamped to [-708.3, 709.7] (never inf). */
+cp_real cp_exp(cp_real x);
+
+/* e^x - 1 with full relative precision near 0 (no cancellation for small |x|):
+ * float build, relative error <= 4 ulp on |x| <= ln 2 / 2, else cp_exp(x) - 1.
+ * Same clamp as cp_exp. Double build: libm expm1 (x clamped above at 709.7). */
+cp_real cp_expm1(cp_real x);
+
+/* Natural logarithm. Float build: absolute error <= 2e-7 + 4 ulp of the result for
+ * x > 0 (subnormals included); log(+inf) = +inf; x <= 0 or NaN gives NaN (callers
+ * validate first: the firmware never feeds it a non-positive number). Double build:
+ * libm log. */
+cp_real cp_log(cp_real x);
+
 #endif /* CP_MATH_H */

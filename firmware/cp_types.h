@@ -64,7 +64,23 @@ enum cp_err {
     CP_ERR_IO = -12,        /* the HAL reported a failure (e.g. hang-up) */
     CP_ERR_FULL = -13,      /* back-pressure: try again later (not fatal) */
     CP_ERR_STATE = -14,     /* call not allowed in the current state */
-    CP_ERR_DONE = -15       /* iterator exhausted */
+    CP_ERR_DONE = -15,      /* iterator exhausted */
+    /* models of seeds 001-003 (gsr, channel, drc); wire codes 25.. in cp_status.def */
+    CP_ERR_OFF_PLANE = -16,     /* fixed-B frame: the centre curve leaves the Oxz plane */
+    CP_ERR_FRENET = -17,        /* Frenet frame undefined: |C' x C''| <= 1e-9 |C'||C''| */
+    CP_ERR_FRAME_REF = -18,     /* tangent parallel to the frame's reference vector */
+    CP_ERR_SECTION = -19,       /* section size not positive (f_N, f_B, a or b <= 0) */
+    CP_ERR_FT_RANGE = -20,      /* the section parameter law f_t leaves [0, 1] */
+    CP_ERR_FOLD = -21,          /* the sweep folds: 1 - k.(P - C) <= 0 somewhere */
+    CP_ERR_TOO_FEW = -22,       /* fewer sections or points than the model needs */
+    CP_ERR_EXPONENT = -23,      /* superellipse exponent n < 1 */
+    CP_ERR_COINCIDENT = -24,    /* coincident consecutive points or section centres */
+    CP_ERR_SECTION_PLANE = -25, /* a section plane contains the chord to its neighbour */
+    CP_ERR_AREA_LAW = -26,      /* interpolated area S <= 0 or exponent n < 1 */
+    CP_ERR_ISOTROPIC = -27,     /* a = b with n != 2: section orientation undefined */
+    CP_ERR_TURN = -28,          /* a turning angle >= 90 degrees (data too sparse, cusp) */
+    CP_ERR_TWIST = -29,         /* adjoining planes twist >= 45 degrees (3D data too sparse) */
+    CP_ERR_BUFFER = -30         /* caller buffer too small (the function reports the size) */
 };
 
 /* C99 compile-time assertion (no _Static_assert in C99). File scope only, unique tag. */

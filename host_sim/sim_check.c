@@ -56,6 +56,7 @@
  *            (m - rho)/R, limit 0.01 deg.
  */
 #include "sim_check.h"
+#include "judge.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -589,8 +590,21 @@ static void ortho_eval(const struct pt *x, const struct pt *a, const struct pt *
 
 /* ---- API ------------------------------------------------------------------------------- */
 
+/* SURFACE of the job (firmware/path.h enum path_kind): 0 canal (judged here), else
+ * forwarded to judge_<m>_* (judge.h). */
+static int sim_check_canal_line(char **tok, unsigned nt);
+
+enum { SURF_CANAL = 0, SURF_GSR = 1, SURF_CHANNEL = 2, SURF_DRC = 3 };
+static int surface;
+static unsigned model_runs; /* runs forwarded to a model judge */
+
 void sim_check_init(void)
 {
+    surface = SURF_CANAL;
+    model_runs = 0;
+    judge_gsr_reset();
+    judge_channel_reset();
+    judge_drc_reset();
     memset(&job, 0, sizeof job);
     job.n = 1;
     job.tol = 1e-3; /* firmware default TOL 1 um */
@@ -610,9 +624,7 @@ void sim_check_init(void)
 int sim_check_job_line(const char *line)
 {
     char buf[128], *tok[SC_MAX_TOKENS + 1];
-    unsigned nt = 0, i;
-    double v[8];
-    unsigned long uv;
+    unsigned nt = 0;
     char *p;
     size_t L = strlen(line);
     if (L >= sizeof buf) {
@@ -638,6 +650,48 @@ int sim_check_job_line(const char *line)
     if (nt == 0u) {
         return 0;
     }
+    if (kw(tok[0], "SURFACE")) {
+        static const char *const names[4] = {"CANAL", "GSR", "CHANNEL", "DRC"};
+        int k;
+        if (nt != 2u) {
+            return 1;
+        }
+        for (k = 0; k < 4; k++) {
+            if (kw(tok[1], names[k])) {
+                break;
+            }
+        }
+        if (k == 4) {
+            return 1;
+        }
+        surface = k;
+        if (k == SURF_GSR) {
+            judge_gsr_reset();
+        } else if (k == SURF_CHANNEL) {
+            judge_channel_reset();
+        } else if (k == SURF_DRC) {
+            judge_drc_reset();
+        }
+        return 0;
+    }
+    if (surface != SURF_CANAL) {
+        /* the shared raster commands also stay in the canal model (one job in the
+         * firmware), the model's judge sees every line */
+        int rm = surface == SURF_GSR       ? judge_gsr_job_line(line)
+                 : surface == SURF_CHANNEL ? judge_channel_job_line(line)
+                                           : judge_drc_job_line(line);
+        int rcan = sim_check_canal_line(tok, nt);
+        return rm != 0 ? rm : rcan;
+    }
+    return sim_check_canal_line(tok, nt);
+}
+
+/* The canal model's part of sim_check_job_line (tokens already split). */
+static int sim_check_canal_line(char **tok, unsigned nt)
+{
+    double v[8];
+    unsigned long uv;
+    unsigned i;
     if (nt > SC_MAX_TOKENS) {
         return kw(tok[0], "CURVE") || kw(tok[0], "RADIUS") || kw(tok[0], "TOOL") ||
                        kw(tok[0], "LINES") || kw(tok[0], "CIRCLES") || kw(tok[0], "STEPS") ||
@@ -772,8 +826,8 @@ int sim_check_job_line(const char *line)
     return 0; /* not a job command (RUN, RESUME, $I, ...) */
 }
 
-void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
-                         unsigned link)
+static void canal_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
+                            unsigned link)
 {
     unsigned i;
     uint64_t want;
@@ -848,7 +902,24 @@ void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, 
     }
 }
 
-void sim_check_point(uint32_t k, double x, double y, double z, const double *n)
+void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
+                         unsigned link)
+{
+    if (surface == SURF_CANAL) {
+        canal_run_begin(points, first, mode, n, steps, link);
+        return;
+    }
+    model_runs++;
+    if (surface == SURF_GSR) {
+        judge_gsr_run_begin(points, first, mode, n, steps, link);
+    } else if (surface == SURF_CHANNEL) {
+        judge_channel_run_begin(points, first, mode, n, steps, link);
+    } else {
+        judge_drc_run_begin(points, first, mode, n, steps, link);
+    }
+}
+
+static void canal_point(uint32_t k, double x, double y, double z, const double *n)
 {
     struct timespec t_a, t_b;
     struct pt cur;
@@ -972,7 +1043,20 @@ out:
     judge_seconds += (double)(t_b.tv_sec - t_a.tv_sec) + 1e-9 * (double)(t_b.tv_nsec - t_a.tv_nsec);
 }
 
-void sim_check_run_end(int complete)
+void sim_check_point(uint32_t k, double x, double y, double z, const double *n)
+{
+    if (surface == SURF_CANAL) {
+        canal_point(k, x, y, z, n);
+    } else if (surface == SURF_GSR) {
+        judge_gsr_point(k, x, y, z, n);
+    } else if (surface == SURF_CHANNEL) {
+        judge_channel_point(k, x, y, z, n);
+    } else {
+        judge_drc_point(k, x, y, z, n);
+    }
+}
+
+static void canal_run_end(int complete)
 {
     uint32_t k;
     if (!run.active) {
@@ -1005,6 +1089,19 @@ void sim_check_run_end(int complete)
     memset(&pv, 0, sizeof pv);
 }
 
+void sim_check_run_end(int complete)
+{
+    if (surface == SURF_CANAL) {
+        canal_run_end(complete);
+    } else if (surface == SURF_GSR) {
+        judge_gsr_run_end(complete);
+    } else if (surface == SURF_CHANNEL) {
+        judge_channel_run_end(complete);
+    } else {
+        judge_drc_run_end(complete);
+    }
+}
+
 static void row(FILE *f, int *passed, int *failed, const char *name, int counted, int ok,
                 const char *detail)
 {
@@ -1022,6 +1119,12 @@ static void row(FILE *f, int *passed, int *failed, const char *name, int counted
 
 void sim_check_report(FILE *f, int *passed, int *failed)
 {
+    judge_gsr_report(f, passed, failed);
+    judge_channel_report(f, passed, failed);
+    judge_drc_report(f, passed, failed);
+    if (runs == 0u && model_runs > 0u) {
+        return;
+    }
     static const char *const names[CK_N] = {"surface", "line", "ortho", "chord", "normal"};
     char d[320];
     int c;

@@ -131,8 +131,28 @@ identical)
             "(native $r1, qemu $r2, raw RUN streams $(wc -c < "$OUT/${job}_native.raw") bytes: $([ $r3 -eq 0 ] && echo identical || cat "$OUT/${job}.cmp"))"
     done
     ;;
+models)
+    # the seed 001-003 models (SURFACE GSR | CHANNEL | DRC): every tests/jobs/model_*.job,
+    # judged, natively and under QEMU, and the two raw RUN streams byte-identical
+    for f in "$J"/model_*.job; do
+        [ -f "$f" ] || continue
+        job=$(basename "$f" .job)
+        hs "${job}_native" native --job "$f" --csv "$OUT/${job}_native.csv" --raw "$OUT/${job}_native.raw"
+        r1=$?
+        result "${job}_native" $r1 "$(figs "${job}_native")"
+        if command -v "$QEMU" >/dev/null 2>&1; then
+            hs "${job}_qemu" qemu --job "$f" --csv "$OUT/${job}_qemu.csv" --raw "$OUT/${job}_qemu.raw"
+            r2=$?
+            result "${job}_qemu" $r2 "$(figs "${job}_qemu")"
+            cmp "$OUT/${job}_native.raw" "$OUT/${job}_qemu.raw" > "$OUT/${job}.cmp" 2>&1
+            result "${job}_identical" $? "(native and QEMU raw RUN streams)"
+        else
+            result "${job}_qemu" 1 "($QEMU not found: apt-get install qemu-system-arm)"
+        fi
+    done
+    ;;
 *)
-    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical" >&2
+    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models" >&2
     echo "sim-suite: 0 passed, 1 failed"; exit 2
     ;;
 esac

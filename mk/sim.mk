@@ -81,7 +81,11 @@ sim-robust: $(BUILD)/host/host_sim $(BUILD)/host/fw_fake
 	$(Q)BUILD=$(BUILD) sh host_sim/robust.sh
 
 # RUN suites (host_sim/sim_suite.sh): each prints "<word>: N passed, N failed"
-.PHONY: sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical
+.PHONY: sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models
+
+## sim-models: every tests/jobs/model_*.job (GSR, CHANNEL, DRC) judged, native and QEMU, streams identical (word "models")
+sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
+	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh models
 
 ## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")
 sim-run-native: $(BUILD)/host/fw_native $(BUILD)/host/host_sim

@@ -1,0 +1,35 @@
+/* judge.h - host_sim's judges of the models other than the canal (seeds 001-003).
+ * SPDX-License-Identifier: MIT
+ *
+ * sim_check.c judges the canal itself and forwards to judge_<m>_* while the job's
+ * SURFACE is <m> (SURFACE GSR | CHANNEL | DRC, docs/PROTOCOL.md). Each judge keeps
+ * its own independent double-precision model (tests/ref_<m>.c, no firmware code)
+ * and has the same contract as the sim_check_* function of the same suffix
+ * (sim_check.h): job_line sees EVERY job line sent while its SURFACE is active
+ * (its own geometry commands and the shared raster commands TOOL, LINES, CIRCLES,
+ * STEPS, TOL, FEED, FORMAT, ...), returns 0 (modelled or not a job line), 1 (bad
+ * arguments: the firmware must answer error, model unchanged) or -1 (cannot
+ * model: the run is reported unchecked). reset is called on `SURFACE <m>` (the
+ * firmware starts that model's geometry afresh); report prints its table rows and
+ * adds its checks to the counts (coverage always counted, like the canal judge).
+ */
+#ifndef JUDGE_H
+#define JUDGE_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#define JUDGE_DECLARE(m)                                                                          \
+    void judge_##m##_reset(void);                                                                 \
+    int judge_##m##_job_line(const char *line);                                                   \
+    void judge_##m##_run_begin(uint32_t points, uint32_t first, int mode, unsigned n,             \
+                               unsigned steps, unsigned link);                                    \
+    void judge_##m##_point(uint32_t k, double x, double y, double z, const double *n);            \
+    void judge_##m##_run_end(int complete);                                                       \
+    void judge_##m##_report(FILE *f, int *passed, int *failed);
+
+JUDGE_DECLARE(gsr)
+JUDGE_DECLARE(channel)
+JUDGE_DECLARE(drc)
+
+#endif /* JUDGE_H */
