@@ -61,6 +61,12 @@ static size_t in_base;         /* bytes of in[] dropped by in_reset (progress co
 /* independent iterator of the current run's job */
 static struct toolpath ref;
 static struct toolpath_cfg ref_cfg, snap_cfg, pre_cfg;
+/* pre_cfg of the last PRE_HIST polls, newest at pre_hist[pre_n % PRE_HIST]: a header
+ * staged in the engine's TX buffer may reach the HAL a poll or more after the poll
+ * that started (and ended) its run, when later job lines have changed the job. */
+#define PRE_HIST 8u
+static struct toolpath_cfg pre_hist[PRE_HIST];
+static unsigned pre_n;
 static int ref_ok, have_snap;
 static int poll_active; /* the engine was running after the current poll */
 static uint32_t gk;            /* next point index expected in a G-code run (no checksum) */
@@ -139,8 +145,10 @@ static int ref_try(const struct toolpath_cfg *c)
  * sent the header, the job is the engine's (job commands are refused while running).
  * A run can also start and end within one poll ("RUN\r\x18..." in one read: the
  * header, then error:20): then the job was the engine's job before or after that
- * poll (or at the last active poll), and the one whose iterator gives `count`
- * points is taken. No point of such a run can follow (at most one stream item per
+ * poll (or at the last active poll, or before one of the last PRE_HIST polls: the
+ * header may leave the TX buffer polls later, after later job lines were applied),
+ * and the one whose iterator gives `count` points is taken. No point of such a run
+ * can follow (at most one stream item per
  * poll, and the first is the preamble / BEGIN). */
 static void ref_start(uint32_t count)
 {
@@ -154,6 +162,14 @@ static void ref_start(uint32_t count)
         (ref_try(&pre_cfg) && toolpath_count(&ref) == count) ||
         (ref_try(&eng.job.cfg) && toolpath_count(&ref) == count)) {
         return;
+    }
+    {
+        unsigned i;
+        for (i = 1; i < PRE_HIST && i < pre_n; i++) {
+            if (ref_try(&pre_hist[(pre_n - i) % PRE_HIST]) && toolpath_count(&ref) == count) {
+                return;
+            }
+        }
     }
     FAIL("stream header (%u points) of a run that ended in the poll that started it, for "
          "no job the iterator reproduces", (unsigned)count);
@@ -390,6 +406,8 @@ static int poll_once(void)
     size_t in0 = in_read(), out0 = mem.out_len;
     int r;
     pre_cfg = eng.job.cfg;
+    pre_hist[pre_n % PRE_HIST] = pre_cfg;
+    pre_n++;
     r = proto_poll(&eng);
     if (trace < 0) {
         trace = getenv("FUZZ_TRACE") != NULL;
@@ -510,6 +528,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     tline_bin = 0;
     frame_rx_init(&frx);
     ref_ok = have_snap = poll_active = 0;
+    pre_n = 0;
     gk = 0;
     hfirst = 0;
     while (a < size) {
