@@ -23,6 +23,13 @@ static int contains_phase(cp_real lo, cp_real hi, cp_real off)
     return off + CP_TWO_PI * m <= hi;
 }
 
+/* Widen [lo[0], lo[1]] (min, max) to contain v. */
+static void widen(cp_real *lo, cp_real v)
+{
+    lo[0] = v < lo[0] ? v : lo[0];
+    lo[1] = v > lo[1] ? v : lo[1];
+}
+
 static cp_real bern3(const cp_real *r, cp_real s)
 {
     cp_real u = CP_R(1.0) - s;
@@ -31,17 +38,17 @@ static cp_real bern3(const cp_real *r, cp_real s)
 }
 
 /* Exact range of R over the normalized parameter s in [0, 1]. */
-static void radius_range(const struct canal *c, cp_real *rmin, cp_real *rmax)
+static void radius_range(const struct canal *c, cp_real *range)
 {
     const cp_real *rp = c->rp;
-    cp_real lo, hi, v;
+    cp_real v;
+    range[0] = rp[0];
+    range[1] = rp[0];
     switch (c->radius) {
     case CANAL_R_CONST:
-        lo = hi = rp[0];
         break;
     case CANAL_R_LINEAR:
-        lo = rp[0] < rp[1] ? rp[0] : rp[1];
-        hi = rp[0] < rp[1] ? rp[1] : rp[0];
+        widen(range, rp[1]);
         break;
     case CANAL_R_COS: {
         /* phase phi = k theta over the travelled theta interval */
@@ -62,21 +69,15 @@ static void radius_range(const struct canal *c, cp_real *rmin, cp_real *rmax)
         }
         cp_sincos(ph0, &s0, &c0);
         cp_sincos(ph1, &s1, &c1);
-        lo = b * c0 + cc;
-        hi = lo;
-        v = b * c1 + cc;
-        lo = v < lo ? v : lo;
-        hi = v > hi ? v : hi;
+        range[0] = b * c0 + cc;
+        range[1] = range[0];
+        widen(range, b * c1 + cc);
         /* interior extrema of b cos(phi) + c: cos = +-1 */
         if (contains_phase(ph0, ph1, CP_R(0.0))) {
-            v = b + cc;
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
+            widen(range, b + cc);
         }
         if (contains_phase(ph0, ph1, CP_PI)) {
-            v = cc - b;
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
+            widen(range, cc - b);
         }
         break;
     }
@@ -85,8 +86,7 @@ static void radius_range(const struct canal *c, cp_real *rmin, cp_real *rmax)
         cp_real qa = d0 - CP_R(2.0) * d1 + d2, qb = CP_R(2.0) * (d1 - d0), qc = d0;
         cp_real roots[2];
         int nr = 0, i;
-        lo = rp[0] < rp[3] ? rp[0] : rp[3];
-        hi = rp[0] < rp[3] ? rp[3] : rp[0];
+        widen(range, rp[3]);
         if (cp_fabs(qa) <= CP_R(1e-12) * (cp_fabs(qb) + cp_fabs(qc)) || qa == CP_R(0.0)) {
             if (qb != CP_R(0.0)) {
                 roots[nr++] = -qc / qb;
@@ -104,33 +104,30 @@ static void radius_range(const struct canal *c, cp_real *rmin, cp_real *rmax)
         }
         for (i = 0; i < nr; i++) {
             if (roots[i] > CP_R(0.0) && roots[i] < CP_R(1.0)) {
-                v = bern3(rp, roots[i]);
-                lo = v < lo ? v : lo;
-                hi = v > hi ? v : hi;
+                widen(range, bern3(rp, roots[i]));
             }
         }
         break;
     }
     }
-    *rmin = lo;
-    *rmax = hi;
 }
 
-static cp_real bezier_speed2(const cp_real *p, cp_real s)
+static void jet_eval(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j,
+                     int second);
+
+/* |C'(s)|^2 of a Bezier, from its jet (every field of c that jet_eval reads is set). */
+static cp_real bezier_speed2(const struct canal *p, cp_real s)
 {
-    cp_real u = CP_R(1.0) - s;
-    cp_real dx = CP_R(3.0) * ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * s * u +
-                              (p[6] - p[4]) * s * s);
-    cp_real dy = CP_R(3.0) * ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * s * u +
-                              (p[7] - p[5]) * s * s);
-    return dx * dx + dy * dy;
+    struct canal_jet j;
+    jet_eval(p, s, &j, 0);
+    return j.dx * j.dx + j.dy * j.dy;
 }
 
 /* Minimum |C'| of a Bezier over [0, 1]: sample, then golden-section refinement
  * in the bracket around the smallest sample (|C'|^2 is a quartic: at most two
  * local minima, each wider than the sample spacing unless it is a near-cusp,
  * which the refinement resolves). Fixed counts. */
-static cp_real bezier_min_speed(const cp_real *p)
+static cp_real bezier_min_speed(const struct canal *p)
 {
     cp_real best = bezier_speed2(p, CP_R(0.0));
     cp_real a, b, x1, x2, f1, f2;
@@ -172,45 +169,42 @@ static cp_real bezier_min_speed(const cp_real *p)
 
 int canal_init(struct canal *c, const struct canal_cfg *cfg)
 {
-    unsigned i, nc, nr;
-    cp_real size = CP_R(0.0), lim;
+    unsigned i, nc, nr, na;
+    cp_real size = CP_R(0.0);
+    int err = CP_OK;
     if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
         return CP_ERR_INVAL;
     }
     nc = curve_nparams[cfg->curve];
     nr = radius_nparams[cfg->radius];
-    for (i = 0; i < 8u; i++) {
-        c->cp[i] = i < nc ? cfg->cp[i] : CP_R(0.0);
-    }
-    for (i = 0; i < 4u; i++) {
-        c->rp[i] = i < nr ? cfg->rp[i] : CP_R(0.0);
-    }
-    for (i = 0; i < nc; i++) {
-        if (!cp_isfinite(c->cp[i])) {
+    /* the angles of an ARC/ELLIPSE are its last two parameters */
+    na = (cfg->curve == CANAL_ARC || cfg->curve == CANAL_ELLIPSE) ? nc - 2u : 8u;
+    /* parameter i < 8 is cp[i], 8 + i is rp[i]: copy (unused ones 0), then every used one
+     * finite (CP_ERR_NONFINITE wins over a range error anywhere), then in range */
+    for (i = 0; i < 12u; i++) {
+        int used = i < 8u ? i < nc : i - 8u < nr;
+        cp_real v = used ? (i < 8u ? cfg->cp[i] : cfg->rp[i - 8u]) : CP_R(0.0);
+        cp_real lim = i >= na && i < 8u ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX;
+        if (i == 10u && cfg->radius == CANAL_R_COS) {
+            lim = CANAL_K_MAX;
+        }
+        if (i < 8u) {
+            c->cp[i] = v;
+        } else {
+            c->rp[i - 8u] = v;
+        }
+        if (!cp_isfinite(v)) {
             return CP_ERR_NONFINITE;
         }
-    }
-    for (i = 0; i < nr; i++) {
-        if (!cp_isfinite(c->rp[i])) {
-            return CP_ERR_NONFINITE;
+        if (cp_fabs(v) > lim) {
+            err = CP_ERR_RANGE;
         }
     }
     c->curve = cfg->curve;
     c->radius = cfg->radius;
     c->dir = 1;
-    /* ranges: coordinates and radii */
-    for (i = 0; i < nc; i++) {
-        int is_angle = (c->curve == CANAL_ARC && i >= 3u) || (c->curve == CANAL_ELLIPSE && i >= 4u);
-        lim = is_angle ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX;
-        if (cp_fabs(c->cp[i]) > lim) {
-            return CP_ERR_RANGE;
-        }
-    }
-    for (i = 0; i < nr; i++) {
-        lim = (c->radius == CANAL_R_COS && i == 2u) ? CANAL_K_MAX : CANAL_COORD_MAX;
-        if (cp_fabs(c->rp[i]) > lim) {
-            return CP_ERR_RANGE;
-        }
+    if (err != CP_OK) {
+        return err;
     }
     switch (c->curve) {
     case CANAL_LINE: {
@@ -261,15 +255,11 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
         size = (xmax - xmin) > (ymax - ymin) ? (xmax - xmin) : (ymax - ymin);
         c->t0 = CP_R(0.0);
         c->t1 = CP_R(1.0);
-        c->cmin = bezier_min_speed(c->cp);
-        break;
+        break; /* cmin below, once the fields the jet reads are set */
     }
     }
     if (!(c->t1 > c->t0)) {
         return CP_ERR_EMPTY;
-    }
-    if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
-        return CP_ERR_DEGENERATE;
     }
     c->inv_span = CP_R(1.0) / (c->t1 - c->t0);
     c->kappa_const = (uint8_t)(c->curve == CANAL_ARC || c->curve == CANAL_LINE);
@@ -284,7 +274,18 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
         }
     }
     c->dth = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? (cp_real)c->dir : CP_TWO_PI;
-    radius_range(c, &c->rmin, &c->rmax);
+    if (c->curve == CANAL_BEZIER) {
+        c->cmin = bezier_min_speed(c);
+    }
+    if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
+        return CP_ERR_DEGENERATE;
+    }
+    {
+        cp_real range[2];
+        radius_range(c, range);
+        c->rmin = range[0];
+        c->rmax = range[1];
+    }
     if (!(c->rmin > CP_R(0.0))) {
         return CP_ERR_RADIUS;
     }

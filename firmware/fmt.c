@@ -40,42 +40,44 @@ int fmt_u32(char *buf, size_t cap, size_t *pos, uint32_t v)
     return CP_OK;
 }
 
+/* '-' for v < 0; returns |v| (no overflow for INT32_MIN), or sets *err if no room. */
+static uint32_t put_sign(char *buf, size_t cap, size_t *pos, int32_t v, int *err)
+{
+    if (v >= 0) {
+        return (uint32_t)v;
+    }
+    if (*pos + 1u > cap) {
+        *err = CP_ERR_FULL;
+        return 0u;
+    }
+    buf[(*pos)++] = '-';
+    return (uint32_t)(-(v + 1)) + 1u;
+}
+
 int fmt_i32(char *buf, size_t cap, size_t *pos, int32_t v)
 {
-    uint32_t m;
-    if (v < 0) {
-        if (*pos + 1u > cap) {
-            return CP_ERR_FULL;
-        }
-        buf[(*pos)++] = '-';
-        m = (uint32_t)(-(v + 1)) + 1u; /* no overflow for INT32_MIN */
-    } else {
-        m = (uint32_t)v;
-    }
-    return fmt_u32(buf, cap, pos, m);
+    int err = CP_OK;
+    uint32_t m = put_sign(buf, cap, pos, v, &err);
+    return err != CP_OK ? err : fmt_u32(buf, cap, pos, m);
 }
 
 int fmt_fixed(char *buf, size_t cap, size_t *pos, int32_t v, unsigned decimals)
 {
-    static const uint32_t pow10[10] = {1u,      10u,      100u,      1000u,      10000u,
-                                       100000u, 1000000u, 10000000u, 100000000u, 1000000000u};
-    uint32_t m, ip, fp, d;
+    uint32_t m, ip, fp, div = 1u;
     unsigned i;
-    int err;
+    int err = CP_OK;
     if (decimals > 9u) {
         return CP_ERR_INVAL;
     }
-    if (v < 0) {
-        if (*pos + 1u > cap) {
-            return CP_ERR_FULL;
-        }
-        buf[(*pos)++] = '-';
-        m = (uint32_t)(-(v + 1)) + 1u;
-    } else {
-        m = (uint32_t)v;
+    m = put_sign(buf, cap, pos, v, &err);
+    if (err != CP_OK) {
+        return err;
     }
-    ip = m / pow10[decimals];
-    fp = m % pow10[decimals];
+    for (i = 0; i < decimals; i++) {
+        div *= 10u;
+    }
+    ip = m / div;
+    fp = m % div;
     err = fmt_u32(buf, cap, pos, ip);
     if (err != CP_OK || decimals == 0u) {
         return err;
@@ -84,9 +86,10 @@ int fmt_fixed(char *buf, size_t cap, size_t *pos, int32_t v, unsigned decimals)
         return CP_ERR_FULL;
     }
     buf[(*pos)++] = '.';
-    for (i = decimals; i > 0u; i--) {
-        d = (fp / pow10[i - 1u]) % 10u;
-        buf[(*pos)++] = (char)('0' + d);
+    for (i = decimals; i > 0u; i--) { /* the fraction's digits, last first */
+        buf[*pos + i - 1u] = (char)('0' + fp % 10u);
+        fp /= 10u;
     }
+    *pos += decimals;
     return CP_OK;
 }

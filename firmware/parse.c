@@ -43,7 +43,7 @@ static cp_real pow10_real(unsigned e)
 int parse_real(const char *s, size_t n, cp_real *out)
 {
     size_t i = 0;
-    int neg = 0, digits = 0, kept = 0, exp10 = 0, eneg = 0, edigits = 0;
+    int neg = 0, digits = 0, kept = 0, exp10 = 0, eneg = 0, edigits = 0, dot = 0;
     uint32_t ev = 0;
     mant_t m = 0;
     cp_real v;
@@ -58,27 +58,25 @@ int parse_real(const char *s, size_t n, cp_real *out)
         parse_is(s + i, n - i, "INFINITY")) {
         return CP_ST_NONFINITE;
     }
-    for (; i < n && s[i] >= '0' && s[i] <= '9'; i++) {
+    /* digits, with at most one '.' among them: a kept digit after it scales by 1/10,
+     * a dropped one before it by 10 */
+    for (; i < n; i++) {
+        if (s[i] == '.' && !dot) {
+            dot = 1;
+            continue;
+        }
+        if (s[i] < '0' || s[i] > '9') {
+            break;
+        }
         digits++;
         if (kept < PARSE_MAX_DIGITS) {
             if (m != 0u || s[i] != '0') {
                 kept++;
             }
             m = m * 10u + (mant_t)(s[i] - '0');
+            exp10 -= dot;
         } else {
-            exp10++;
-        }
-    }
-    if (i < n && s[i] == '.') {
-        for (i++; i < n && s[i] >= '0' && s[i] <= '9'; i++) {
-            digits++;
-            if (kept < PARSE_MAX_DIGITS) {
-                if (m != 0u || s[i] != '0') {
-                    kept++;
-                }
-                m = m * 10u + (mant_t)(s[i] - '0');
-                exp10--;
-            }
+            exp10 += 1 - dot;
         }
     }
     if (digits == 0) {

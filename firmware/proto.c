@@ -13,17 +13,39 @@
 #define RT_RESUME '~'
 #define RT_ABORT 0x18
 
-const char *cp_status_text(int code)
-{
-    switch (code) {
-#define CP_STATUS(name, num, text)                                                                 \
-    case num:                                                                                      \
-        return text;
+/* The texts of cp_status.def packed in code order, each ended by its NUL (no pointer
+ * table). The rows must number 0, 1, 2, ... in order: checked row by row below. */
+enum cp_status_row {
+#define CP_STATUS(name, num, text) CP_STATUS_ROW_##name,
 #include "cp_status.def"
 #undef CP_STATUS
-    default:
+    CP_STATUS_ROWS
+};
+#define CP_STATUS(name, num, text) CP_STATIC_ASSERT(CP_STATUS_ROW_##name == (num), row_##name);
+#include "cp_status.def"
+#undef CP_STATUS
+static const char status_texts[] =
+#define CP_STATUS(name, num, text) text "\0"
+#include "cp_status.def"
+#undef CP_STATUS
+    ;
+
+const char *cp_status_text(int code)
+{
+    const char *s = status_texts;
+    size_t i;
+    int n = 0;
+    if (code < 0 || code >= CP_STATUS_ROWS) {
         return "?";
     }
+    /* text number `code` starts after `code` NULs (bounded by the table) */
+    for (i = 0; i < sizeof status_texts && n < code; i++) {
+        if (status_texts[i] == '\0') {
+            n++;
+            s = status_texts + i + 1u;
+        }
+    }
+    return s;
 }
 
 int proto_init(struct proto *p, const struct proto_cfg *cfg)
@@ -32,38 +54,18 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
         cfg->uart->read == NULL || cfg->uart->now_ms == NULL) {
         return CP_ERR_INVAL;
     }
+    {
+        /* every counter, length, flag and buffer 0: line_len, rx/tx, err = CP_OK,
+         * state = PROTO_IDLE, fmt = JOB_GCODE, path.kind = PATH_CANAL, count 0, ... */
+        unsigned char *b = (unsigned char *)p;
+        size_t i;
+        for (i = 0; i < sizeof *p; i++) {
+            b[i] = 0u;
+        }
+    }
     p->uart = cfg->uart;
-    p->line_len = 0;
-    p->line_flags = 0;
-    p->last_cr = 0;
-    p->rx_len = 0;
-    p->rx_pos = 0;
-    p->tx_len = 0;
-    p->tx_pos = 0;
-    p->lines_seen = 0;
-    p->err = CP_OK;
     job_init(&p->job);
-    p->state = PROTO_IDLE;
-    p->fmt = JOB_GCODE;
-    p->ring_head = 0;
-    p->ring_n = 0;
-    p->inflight = 0;
-    p->resync = 0;
-    p->retries = 0;
-    p->start_k = 0;
-    p->next = 0;
-    p->acked = 0;
-    p->end = 0;
-    p->t_last = 0;
-    p->pend_len = 0;
-    p->pend_idx = 0;
     p->hdr = 1;
-    p->frames_tail = 0;
-    p->tail_len = 0;
-    p->tail_rep = 0;
-    p->tail_t = 0;
-    p->path.kind = PATH_CANAL;
-    p->path.info.count = 0;
     frame_rx_init(&p->frx);
     return CP_OK;
 }
@@ -99,14 +101,20 @@ static void tx_u32(struct proto *p, uint32_t v)
     p->tx_len = (uint16_t)pos;
 }
 
+/* Text s, then the number v. */
+static void tx_kv(struct proto *p, const char *s, uint32_t v)
+{
+    tx_str(p, s);
+    tx_u32(p, v);
+}
+
 static void reply_status(struct proto *p, int code)
 {
     if (code == CP_ST_OK) {
         tx_str(p, "ok\n");
         return;
     }
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
+    tx_kv(p, "error:", (uint32_t)code);
     tx_str(p, " ");
     tx_str(p, cp_status_text(code));
     tx_str(p, "\n");
@@ -114,22 +122,15 @@ static void reply_status(struct proto *p, int code)
 
 static void reply_info(struct proto *p)
 {
-    tx_str(p, "[VER:canalpath " CP_FW_VERSION " proto ");
-    tx_u32(p, CP_PROTO_VERSION);
-    tx_str(p, "]\n[OPT:real=" CP_REAL_NAME ",line=");
-    tx_u32(p, CP_LINE_MAX);
-    tx_str(p, ",tx=");
-    tx_u32(p, CP_TX_BUF);
-    tx_str(p, ",steps=");
-    tx_u32(p, CP_MAX_STEPS);
-    tx_str(p, ",sub=");
-    tx_u32(p, CP_MAX_SUBSTEPS);
-    tx_str(p, ",lines=");
-    tx_u32(p, CP_MAX_LINES);
-    tx_str(p, ",link=");
-    tx_u32(p, CP_MAX_LINK);
-    tx_str(p, ",window=");
-    tx_u32(p, PROTO_WINDOW);
+    static const char key[6][9] = {",tx=", ",steps=", ",sub=", ",lines=", ",link=", ",window="};
+    static const uint16_t val[6] = {CP_TX_BUF,    CP_MAX_STEPS,
+                                    CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, PROTO_WINDOW};
+    unsigned i;
+    tx_kv(p, "[VER:canalpath " CP_FW_VERSION " proto ", CP_PROTO_VERSION);
+    tx_kv(p, "]\n[OPT:real=" CP_REAL_NAME ",line=", CP_LINE_MAX);
+    for (i = 0; i < 6u; i++) {
+        tx_kv(p, key[i], val[i]);
+    }
     tx_str(p, "]\n");
 }
 
@@ -137,7 +138,7 @@ static void reply_info(struct proto *p)
  * and k points of the job's m sent (k counts from the job's first point: RESUME). */
 static void reply_report(struct proto *p)
 {
-    static const char *const names[3] = {"<Idle", "<Run", "<Hold"};
+    static const char names[3][6] = {"<Idle", "<Run", "<Hold"};
     uint32_t sent = 0;
     tx_str(p, names[p->state]);
     if (p->state != PROTO_IDLE) {
@@ -147,15 +148,11 @@ static void reply_report(struct proto *p)
         sent = items > npts ? npts : items;
         {
             uint32_t k = p->start_k + sent, block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
-            tx_str(p, "|L:");
-            tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
-            tx_str(p, "/");
-            tx_u32(p, p->path.info.n);
+            tx_kv(p, "|L:", k > 0u ? (k - 1u) / block : 0u);
+            tx_kv(p, "/", p->path.info.n);
         }
-        tx_str(p, "|P:");
-        tx_u32(p, p->start_k + sent);
-        tx_str(p, "/");
-        tx_u32(p, path_count(&p->path));
+        tx_kv(p, "|P:", p->start_k + sent);
+        tx_kv(p, "/", path_count(&p->path));
     }
     tx_str(p, ">\n");
 }
@@ -225,16 +222,12 @@ static int run_start(struct proto *p, uint32_t first)
     if (p->fmt == JOB_GCODE) {
         /* what the stream will hold, for hosts and judges (a G-code machine skips
          * '[' lines; this one is not counted against its RX buffer) */
-        tx_str(p, "[RUN:points=");
-        tx_u32(p, path_count(&p->path));
-        tx_str(p, ",first=");
-        tx_u32(p, first);
-        tx_str(p, p->path.info.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=");
-        tx_u32(p, p->path.info.n);
-        tx_str(p, ",steps=");
-        tx_u32(p, p->path.info.steps);
-        tx_str(p, ",link=");
-        tx_u32(p, p->path.info.link);
+        tx_kv(p, "[RUN:points=", path_count(&p->path));
+        tx_kv(p, ",first=", first);
+        tx_kv(p, p->path.info.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=",
+              p->path.info.n);
+        tx_kv(p, ",steps=", p->path.info.steps);
+        tx_kv(p, ",link=", p->path.info.link);
         tx_str(p, "]\n");
     }
     return CP_ST_OK;
@@ -272,20 +265,23 @@ static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
     } else if (idx + 1u == p->hdr) {
         err |= fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
+        static const char word[4][5] = {"G1 X", " Y", " Z", " F"};
         struct toolpath_pt pt;
+        cp_real v[4];
+        unsigned i, nw = p->job.feed > CP_R(0.0) ? 4u : 3u;
         int e = point_at(p, p->start_k + idx - p->hdr, &pt);
         if (e != CP_OK) {
             return e;
         }
-        err |= fmt_str(out, cap, &pos, "G1 X");
-        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.x, CP_R(10000.0)), 4u);
-        err |= fmt_str(out, cap, &pos, " Y");
-        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.y, CP_R(10000.0)), 4u);
-        err |= fmt_str(out, cap, &pos, " Z");
-        err |= fmt_fixed(out, cap, &pos, quantize(pt.p.z, CP_R(10000.0)), 4u);
-        if (p->job.feed > CP_R(0.0)) {
-            err |= fmt_str(out, cap, &pos, " F");
-            err |= fmt_fixed(out, cap, &pos, quantize(p->job.feed, CP_R(10.0)), 1u);
+        v[0] = pt.p.x;
+        v[1] = pt.p.y;
+        v[2] = pt.p.z;
+        v[3] = p->job.feed;
+        /* X Y Z with 4 decimals, then F (1 decimal) unless the feed is 0 */
+        for (i = 0; i < nw; i++) {
+            err |= fmt_str(out, cap, &pos, word[i]);
+            err |= fmt_fixed(out, cap, &pos, quantize(v[i], i < 3u ? CP_R(10000.0) : CP_R(10.0)),
+                             i < 3u ? 4u : 1u);
         }
     }
     if (p->job.checksum) {
@@ -319,16 +315,22 @@ static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
         struct toolpath_pt pt;
         uint32_t k = p->start_k + idx - 1u;
         int e = point_at(p, k, &pt);
+        cp_real v[6];
+        unsigned i;
         if (e != CP_OK) {
             return e;
         }
+        v[0] = pt.p.x;
+        v[1] = pt.p.y;
+        v[2] = pt.p.z;
+        v[3] = pt.n.x;
+        v[4] = pt.n.y;
+        v[5] = pt.n.z;
         frame_put_u32(pl, k);
-        frame_put_u32(pl + 4, (uint32_t)quantize(pt.p.x, CP_R(10000.0)));
-        frame_put_u32(pl + 8, (uint32_t)quantize(pt.p.y, CP_R(10000.0)));
-        frame_put_u32(pl + 12, (uint32_t)quantize(pt.p.z, CP_R(10000.0)));
-        frame_put_u16(pl + 16, (uint16_t)(int16_t)quantize(pt.n.x, CP_R(32767.0)));
-        frame_put_u16(pl + 18, (uint16_t)(int16_t)quantize(pt.n.y, CP_R(32767.0)));
-        frame_put_u16(pl + 20, (uint16_t)(int16_t)quantize(pt.n.z, CP_R(32767.0)));
+        for (i = 0; i < 3u; i++) { /* position in 0.1 um, normal in 1/32767 */
+            frame_put_u32(pl + 4u + 4u * i, (uint32_t)quantize(v[i], CP_R(10000.0)));
+            frame_put_u16(pl + 16u + 2u * i, (uint16_t)(int16_t)quantize(v[3u + i], CP_R(32767.0)));
+        }
         frame_put_u16(pl + 22, (uint16_t)pt.line);
         frame_put_u16(pl + 24, pt.index);
         return frame_encode((uint8_t)idx, FRAME_POINT, pl, FRAME_POINT_PAYLOAD, out, cap);
@@ -488,8 +490,11 @@ static int starts_with(const struct proto *p, const char *kw)
  * Returns 1 if it was a machine response (consumed), else 0. */
 static int machine_line(struct proto *p)
 {
+    /* the machine's lines act only on a GCODE run (when idle they are just consumed) */
+    int gc = p->state != PROTO_IDLE && p->fmt == JOB_GCODE;
+    int rs;
     if (starts_with(p, "ok") && p->line_len == 2u) {
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
+        if (gc) {
             p->t_last = hal_uart_now_ms(p->uart);
             if (!p->resync && p->ring_n > 0u) {
                 p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
@@ -501,29 +506,26 @@ static int machine_line(struct proto *p)
         return 1;
     }
     if (starts_with(p, "error:") || starts_with(p, "ALARM:") || starts_with(p, "Error:")) {
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
+        if (gc) {
             p->t_last = hal_uart_now_ms(p->uart);
-        }
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && !p->job.checksum) {
-            run_finish(p, CP_ST_PEER_ERROR);
-        }
-        /* with checksums a machine error precedes its Resend: request */
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum &&
-            starts_with(p, "ALARM:")) {
-            run_finish(p, CP_ST_PEER_ERROR);
+            /* with checksums a machine error precedes its Resend: request */
+            if (!p->job.checksum || starts_with(p, "ALARM:")) {
+                run_finish(p, CP_ST_PEER_ERROR);
+            }
         }
         return 1;
     }
-    if (starts_with(p, "Resend:") || starts_with(p, "rs ")) {
-        uint16_t a = starts_with(p, "rs ") ? 3u : 7u;
+    rs = starts_with(p, "rs ");
+    if (rs || starts_with(p, "Resend:")) {
+        uint16_t a = rs ? 3u : 7u;
         uint32_t n;
         while (a < p->line_len && p->line[a] == ' ') {
             a++;
         }
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE) {
+        if (gc) {
             p->t_last = hal_uart_now_ms(p->uart);
         }
-        if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->job.checksum && !p->resync) {
+        if (gc && p->job.checksum && !p->resync) {
             if (parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
                 n < p->next) {
                 /* regenerate from line Nn (stream index n) once the machine has gone

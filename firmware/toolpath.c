@@ -107,6 +107,23 @@ static void emit_point(const struct toolpath *tp, const struct canal_frame *f, c
     emit_inline(tp, f, h, b, out);
 }
 
+/* Midpoint sagitta |p1 - (p0 + p2)/2| of the points emitted for labels (h[k], b[k]) at
+ * frames f[k], k = 0, 1, 2; *fin = 0 if the last point is not finite. */
+static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, const cp_real *h,
+                    const cp_real *b, int *fin)
+{
+    struct canal_point p0, p1, p2;
+    cp_real dx, dy, dz;
+    emit_point(tp, &f[0], h[0], b[0], &p0);
+    emit_point(tp, &f[1], h[1], b[1], &p1);
+    emit_point(tp, &f[2], h[2], b[2], &p2);
+    dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
+    dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
+    dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
+    *fin = cp_isfinite(p2.m.x + p2.m.y + p2.m.z);
+    return cp_sqrt(dx * dx + dy * dy + dz * dz);
+}
+
 /* Is label (h, b) regular on the surface and (with a tool) on the tool-centre surface? */
 static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b)
 {
@@ -321,23 +338,18 @@ static CP_NOINLINE int walk_lines(const struct toolpath *tp, cp_real *sag)
         canal_frame(&j, &f[2]);
         lam[2] = q.lam;
         for (jl = 0; jl < tp->n; jl++) {
-            cp_real al, bl, dx, dy, dz, s2;
-            struct canal_point p0, p1, p2;
-            int k;
+            cp_real al, bl, s2, h[3], b[3];
+            int k, fin;
             line_label(tp, jl, &al, &bl);
-            for (k = (i == 0u ? 0 : 1); k < 3; k++) {
-                if (!regular(tp, &f[k], al + lam[k] * bl, bl)) {
+            for (k = 0; k < 3; k++) {
+                h[k] = al + lam[k] * bl;
+                b[k] = bl;
+                if (k >= (i == 0u ? 0 : 1) && !regular(tp, &f[k], h[k], bl)) {
                     return CP_ERR_CUSP;
                 }
             }
-            emit_point(tp, &f[0], al + lam[0] * bl, bl, &p0);
-            emit_point(tp, &f[1], al + lam[1] * bl, bl, &p1);
-            emit_point(tp, &f[2], al + lam[2] * bl, bl, &p2);
-            dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
-            dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
-            dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
-            s2 = cp_sqrt(dx * dx + dy * dy + dz * dz);
-            if (!cp_isfinite(s2) || !cp_isfinite(p2.m.x + p2.m.y + p2.m.z)) {
+            s2 = sag3(tp, f, h, b, &fin);
+            if (!cp_isfinite(s2) || !fin) {
                 return CP_ERR_NUMERIC;
             }
             smax = s2 > smax ? s2 : smax;
@@ -401,8 +413,8 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
 static int validate(const struct toolpath_cfg *cfg)
 {
     cp_real umax;
-    if (cfg->mode > TOOLPATH_CIRCLES || cfg->output > TOOLPATH_OUT_TIP ||
-        cfg->labels > TOOLPATH_LABEL_LAMBDA || cfg->span > TOOLPATH_SPAN_ANGLE ||
+    /* mode, labels and span are each 0 or 1 */
+    if ((cfg->mode | cfg->labels | cfg->span) > 1u || cfg->output > TOOLPATH_OUT_TIP ||
         (cfg->span == TOOLPATH_SPAN_ANGLE &&
          (cfg->mode != TOOLPATH_CIRCLES || cfg->labels != TOOLPATH_LABEL_ANGLE))) {
         return CP_ERR_INVAL;
@@ -493,37 +505,31 @@ static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t 
 {
     struct quad q2;
     struct canal_jet j;
-    struct canal_frame f0, f1, f2;
-    cp_real l0, l1, smax = CP_R(0.0);
+    struct canal_frame f[3];
+    cp_real lam[3], smax = CP_R(0.0);
     uint32_t i, m = tp->substeps;
     quad_reset(&tp->surf, &q2, &j);
-    canal_frame(&j, &f0);
-    l0 = q2.lam;
+    canal_frame(&j, &f[0]);
+    lam[0] = q2.lam;
     for (i = 0; i < gsteps; i++) {
-        uint32_t side;
+        uint32_t side, k;
         /* m panels of width hp per half grid step, on the hp/2 half-node grid */
-        quad_march(tp, &q2, 4u * m * i, m, 1, tp->hp * CP_R(0.5), &j);
-        canal_frame(&j, &f1);
-        l1 = q2.lam;
-        quad_march(tp, &q2, 4u * m * i + 2u * m, m, 1, tp->hp * CP_R(0.5), &j);
-        canal_frame(&j, &f2);
+        for (k = 1; k < 3u; k++) {
+            quad_march(tp, &q2, 4u * m * i + 2u * m * (k - 1u), m, 1, tp->hp * CP_R(0.5), &j);
+            canal_frame(&j, &f[k]);
+            lam[k] = q2.lam;
+        }
         for (side = 0; side < 2u; side++) {
-            struct canal_point p0, p1, p2;
-            cp_real u = side ? tp->u1 : tp->u0, hl, bl, dx, dy, dz, s2;
-            bound_label(tp, u, &f0, l0, &hl, &bl);
-            emit_point(tp, &f0, hl, bl, &p0);
-            bound_label(tp, u, &f1, l1, &hl, &bl);
-            emit_point(tp, &f1, hl, bl, &p1);
-            bound_label(tp, u, &f2, q2.lam, &hl, &bl);
-            emit_point(tp, &f2, hl, bl, &p2);
-            dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
-            dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
-            dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
-            s2 = cp_sqrt(dx * dx + dy * dy + dz * dz);
+            cp_real u = side ? tp->u1 : tp->u0, h[3], b[3], s2;
+            int fin;
+            for (k = 0; k < 3u; k++) {
+                bound_label(tp, u, &f[k], lam[k], &h[k], &b[k]);
+            }
+            s2 = sag3(tp, f, h, b, &fin);
             smax = s2 > smax ? s2 : smax;
         }
-        f0 = f2;
-        l0 = q2.lam;
+        f[0] = f[2];
+        lam[0] = lam[2];
     }
     return smax;
 }
