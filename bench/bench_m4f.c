@@ -27,6 +27,9 @@
 #include "proto.h"
 #include "cp_math.h"
 #include "toolpath.h"
+#include "drc.h"
+#include "channel.h"
+#include "gsr.h"
 
 #ifdef BENCH_HOST
 #include <stdio.h>
@@ -248,7 +251,309 @@ static void call_tp_init(void)
     bench_sink = toolpath_init(&tp_bench, &c);
 }
 
+/* ---- DRC (seed 001): thickening and its streams ---- */
+static struct drc_pt drc_a, drc_b, drc_m;
+static struct drc_cfg drc_g;
+static struct drc_path drc_it;
+static struct toolpath_pt drc_pt;
+static struct cp_vec3 drc_tan[12];
+
+/* a 7-point spiral (the unit tests' spiral_nonuniform, scaled x10), 3D variant lifted */
+static const float drc_xy[7][2] = {{0.0f, 0.0f},      {4.98f, 0.3f},   {9.7f, 1.49f},
+                                   {14.16f, 3.6f},    {17.47f, 6.77f}, {19.32f, 10.7f},
+                                   {19.95f, 15.05f}};
+
+static void drc_geom(int edge, int lift, uint8_t k)
+{
+    int i;
+    memset(&drc_g, 0, sizeof drc_g);
+    for (i = 0; i < 7; i++) {
+        drc_g.p[i].x = drc_xy[i][0];
+        drc_g.p[i].y = drc_xy[i][1];
+        drc_g.p[i].z = lift ? 0.4f * (float)i : 0.0f;
+    }
+    drc_g.n = 7;
+    drc_g.passes = k;
+    drc_g.edge = (uint8_t)edge;
+}
+
+static void setup_drc_insert(void)
+{
+    drc_a.p.x = 0.0f;
+    drc_a.p.y = 0.0f;
+    drc_a.p.z = 0.0f;
+    drc_a.t.x = 0.995f;
+    drc_a.t.y = -0.0998f;
+    drc_a.t.z = 0.0f;
+    drc_b.p.x = 1.0f;
+    drc_b.p.y = 0.0f;
+    drc_b.p.z = 0.0f;
+    drc_b.t.x = 0.98f;
+    drc_b.t.y = 0.199f;
+    drc_b.t.z = 0.0f;
+}
+
+/* one inserted point, planar closed form (r^-1 by bisection + 2 E evaluations) */
+static void call_drc_insert_planar(void)
+{
+    drc_insert(&drc_a, &drc_b, 1, &drc_m);
+    bench_sink = (int32_t)(drc_m.p.y * 1000.0f);
+}
+
+/* one inserted point, 3D twisted model (30 complex Newton steps) */
+static void setup_drc_insert_3d(void)
+{
+    setup_drc_insert();
+    drc_b.p.z = 0.05f;
+    drc_b.t.z = 0.08f;
+}
+
+static void call_drc_insert_3d(void)
+{
+    drc_insert(&drc_a, &drc_b, 0, &drc_m);
+    bench_sink = (int32_t)(drc_m.p.y * 1000.0f);
+}
+
+/* steps 0-1 on 7 points: validation and the tangent assignment (once per RUN) */
+static void call_drc_tangents(void)
+{
+    bench_sink = drc_tangents(drc_g.p, 1u, drc_tan, 1u, 7u);
+}
+
+static void setup_drc_tangents(void)
+{
+    drc_geom(0, 0, 5);
+}
+
+/* 32 streamed points = one original segment at K = 5 (32 inserted points): EDGE OFF */
+static void setup_drc_curve32(void)
+{
+    static struct toolpath_cfg c; /* drc_path keeps a pointer to its raster */
+    int i;
+    drc_geom(0, 0, 5);
+    memset(&c, 0, sizeof c);
+    c.n = 1;
+    c.tol = CP_R(0.001);
+    bench_sink = drc_path_init(&drc_it, &drc_g, &c);
+    for (i = 0; i < 64; i++) {
+        bench_sink = drc_path_next(&drc_it, &drc_pt);
+    }
+}
+
+static void call_drc_next32(void)
+{
+    int i;
+    for (i = 0; i < 32; i++) {
+        bench_sink = drc_path_next(&drc_it, &drc_pt);
+    }
+}
+
+/* the same on a fillet (EDGE ON, 1 line, LINEAR radius law): + Lambda, frame, point */
+static void setup_drc_edge32(void)
+{
+    static struct toolpath_cfg c; /* drc_path keeps a pointer to its raster */
+    int i;
+    drc_geom(1, 0, 5);
+    memset(&c, 0, sizeof c);
+    c.n = 1;
+    c.u0 = CP_R(0.5);
+    c.u1 = CP_R(0.5);
+    c.tol = CP_R(0.001);
+    c.link = TOOLPATH_LINK_AUTO;
+    c.surf.radius = CANAL_R_LINEAR;
+    c.surf.rp[0] = CP_R(3.0);
+    c.surf.rp[1] = CP_R(5.0);
+    bench_sink = drc_path_init(&drc_it, &drc_g, &c);
+    for (i = 0; i < 64; i++) {
+        bench_sink = drc_path_next(&drc_it, &drc_pt);
+    }
+}
+
+/* ---- CHANNEL (seed 002): the B.3 example (R = T(psi)T(theta)T(phi)) ---- */
+static struct channel_cfg ch_g;
+static struct channel_path ch_it;
+static struct channel_row ch_row;
+static struct toolpath_pt ch_pt;
+static volatile cp_real ch_u = CP_R(0.731);
+
+static void ch_geom(void)
+{
+    static const float abn[3][3] = {{5.0f, 3.5f, 2.0f}, {4.0f, 3.0f, 3.0f}, {3.5f, 2.5f, 6.0f}};
+    static const float ang[3][3] = {{240.0f, 10.5882353f, 30.0f},
+                                    {225.0f, 22.5f, 15.0f},
+                                    {210.0f, 25.7142857f, 10.0f}};
+    static const float cen[3][3] = {{3.0f, 4.5f, 1.0f}, {6.0f, 3.5f, 7.0f}, {7.0f, 1.0f, 14.0f}};
+    int i;
+    memset(&ch_g, 0, sizeof ch_g);
+    ch_g.count = 3;
+    for (i = 0; i < 3; i++) {
+        ch_g.s[i].a = abn[i][0];
+        ch_g.s[i].b = abn[i][1];
+        ch_g.s[i].n = abn[i][2];
+        ch_g.s[i].c.x = cen[i][0];
+        ch_g.s[i].c.y = cen[i][1];
+        ch_g.s[i].c.z = cen[i][2];
+        channel_euler(&ch_g.s[i], ang[i][0] * CP_DEG2RAD, ang[i][1] * CP_DEG2RAD,
+                      ang[i][2] * CP_DEG2RAD, CHANNEL_ORDER_SPIN_FIRST);
+    }
+}
+
+static void ch_raster(struct toolpath_cfg *c, uint8_t mode)
+{
+    memset(c, 0, sizeof *c);
+    c->mode = mode;
+    c->n = 3;
+    c->u0 = CP_R(-1.5);
+    c->u1 = CP_R(1.5);
+    c->steps = 200;
+    c->link = 8;
+}
+
+/* one point of a LINES raster: every point is a new u (row: guide, laws, Beta constants,
+ * section, frame; then the point and its normal; the angle's logs are cached per line) */
+static void setup_ch_lines(void)
+{
+    struct toolpath_cfg c;
+    ch_geom();
+    ch_raster(&c, TOOLPATH_LINES);
+    bench_sink = channel_path_init(&ch_it, &ch_g, &c);
+    bench_sink = channel_path_seek(&ch_it, 50u);
+    bench_sink = channel_path_next(&ch_it, &ch_pt);
+}
+
+static void call_ch_next(void)
+{
+    bench_sink = channel_path_next(&ch_it, &ch_pt);
+}
+
+/* one point of a CIRCLES raster: the row is cached for the ring (sincos, 2 logs, 2 exps) */
+static void setup_ch_circles(void)
+{
+    struct toolpath_cfg c;
+    ch_geom();
+    ch_raster(&c, TOOLPATH_CIRCLES);
+    bench_sink = channel_path_init(&ch_it, &ch_g, &c);
+    bench_sink = channel_path_seek(&ch_it, 50u);
+    bench_sink = channel_path_next(&ch_it, &ch_pt);
+}
+
+static void setup_ch_model(void)
+{
+    ch_geom();
+    bench_sink = channel_init(&ch_it.ch, &ch_g);
+}
+
+static void call_ch_row(void)
+{
+    channel_row(&ch_it.ch, ch_u, &ch_row);
+    bench_sink = (int32_t)(ch_row.ab[0] * 1000.0f);
+}
+
+/* RUN's validation: model, evaluation grid, step/link derivation and walks (LINES 3, 10 um) */
+static void call_ch_init(void)
+{
+    struct toolpath_cfg c;
+    ch_raster(&c, TOOLPATH_LINES);
+    c.steps = 0;
+    c.tol = CP_R(0.01);
+    c.link = TOOLPATH_LINK_AUTO;
+    bench_sink = channel_path_init(&ch_it, &ch_g, &c);
+}
+
 /* ---- the table: add routines here ---- */
+/* ---- GSR (seed 003): one streamed point, rational vs trigonometric section ---- */
+static struct gsr_cfg gsr_g;
+static struct gsr_path gsr_it;
+static struct toolpath_pt gsr_pt;
+
+/* Bezier centre, polynomial radii, RMF: no trigonometry outside the section form. */
+static void gsr_setup(uint8_t mode, uint8_t form, int g1)
+{
+    struct toolpath_cfg c;
+    int i;
+    memset(&gsr_g, 0, sizeof gsr_g);
+    if (g1) { /* C.4 G1: two sinusoids (centre z and f_N): 2 sincos per new section */
+        gsr_g.c[0][1] = 8.0f;
+        gsr_g.c[2][GSR_B] = 2.0f;
+        gsr_g.c[2][GSR_W] = CP_PI;
+        gsr_g.r[0][0] = 1.2f;
+        gsr_g.r[0][GSR_B] = 0.5f;
+        gsr_g.r[0][GSR_W] = CP_PI;
+        gsr_g.frame = GSR_FRAME_FIXED;
+    } else {
+        static const float bz[4][3] = {{0, 0, 0}, {4, 0, 2}, {8, 3, 2}, {12, 3, 0}};
+        for (i = 0; i < 12; i++) {
+            gsr_g.c[i % 3][i / 3] = bz[i / 3][i % 3];
+        }
+        gsr_g.centre = GSR_CENTRE_BEZIER;
+        gsr_g.r[0][0] = 0.8f;
+        gsr_g.frame = GSR_FRAME_RMF;
+        gsr_g.ref.z = 1.0f;
+    }
+    gsr_g.r[1][0] = 0.8f;
+    gsr_g.r[1][1] = 0.3f;
+    gsr_g.r[2][1] = 1.0f;
+    gsr_g.section = form;
+    memset(&c, 0, sizeof c);
+    c.mode = mode;
+    c.n = 3;
+    c.u0 = -CP_PI;
+    c.u1 = CP_PI;
+    c.steps = 64;
+    c.link = 0;
+    bench_sink = gsr_path_init(&gsr_it, &gsr_g, &c);
+    for (i = 0; i < 20; i++) {
+        bench_sink = gsr_path_next(&gsr_it, &gsr_pt);
+    }
+}
+
+static void setup_gsr_ring_rational(void)
+{
+    gsr_setup(TOOLPATH_CIRCLES, GSR_SECTION_RATIONAL, 0);
+}
+
+static void setup_gsr_ring_trig(void)
+{
+    gsr_setup(TOOLPATH_CIRCLES, GSR_SECTION_TRIG, 0);
+}
+
+static void setup_gsr_line_rational(void)
+{
+    gsr_setup(TOOLPATH_LINES, GSR_SECTION_RATIONAL, 0);
+}
+
+static void setup_gsr_line_g1(void)
+{
+    gsr_setup(TOOLPATH_LINES, GSR_SECTION_RATIONAL, 1);
+}
+
+static void call_gsr_next(void)
+{
+    bench_sink = gsr_path_next(&gsr_it, &gsr_pt);
+}
+
+static volatile cp_real gsr_psi_arg = CP_R(0.37);
+
+static void call_gsr_rational(void)
+{
+    cp_real x, y;
+    gsr_unit_rational(gsr_psi_arg, &x, &y);
+    bench_sink = (int32_t)(x * 1000.0f + y);
+}
+
+static void call_gsr_init(void)
+{
+    struct toolpath_cfg c;
+    memset(&c, 0, sizeof c);
+    c.mode = TOOLPATH_LINES;
+    c.n = 5;
+    c.u0 = -0.5f * CP_PI;
+    c.u1 = 0.5f * CP_PI;
+    c.tol = 0.002f;
+    c.link = TOOLPATH_LINK_AUTO;
+    bench_sink = gsr_path_init(&gsr_it, &gsr_g, &c);
+}
+
 static const struct bench_case cases[] = {
     {"empty", setup_none, call_empty}, /* must stay first: the baseline */
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
@@ -262,6 +567,21 @@ static const struct bench_case cases[] = {
     {"cp_sincos", setup_none, call_sincos},
     {"canal_frame", setup_frame, call_frame},
     {"toolpath_init_tol2um", setup_none, call_tp_init},
+    {"drc_insert_planar", setup_drc_insert, call_drc_insert_planar},
+    {"drc_insert_3d", setup_drc_insert_3d, call_drc_insert_3d},
+    {"drc_tangents_7pt", setup_drc_tangents, call_drc_tangents},
+    {"drc_next_curve_x32", setup_drc_curve32, call_drc_next32},
+    {"drc_next_edge_x32", setup_drc_edge32, call_drc_next32},
+    {"channel_next_lines", setup_ch_lines, call_ch_next},
+    {"channel_next_circles", setup_ch_circles, call_ch_next},
+    {"channel_row", setup_ch_model, call_ch_row},
+    {"channel_init_tol10um", setup_ch_model, call_ch_init},
+    {"gsr_ring_pt_rational", setup_gsr_ring_rational, call_gsr_next},
+    {"gsr_ring_pt_trig", setup_gsr_ring_trig, call_gsr_next},
+    {"gsr_line_pt_bezier_rmf", setup_gsr_line_rational, call_gsr_next},
+    {"gsr_line_pt_g1", setup_gsr_line_g1, call_gsr_next},
+    {"gsr_unit_rational", setup_none, call_gsr_rational},
+    {"gsr_init_g1_tol2um", setup_gsr_line_g1, call_gsr_init},
 };
 
 #define N_CASES (sizeof cases / sizeof cases[0])

@@ -56,6 +56,41 @@
 #define CP_TOOLPATH_BUDGET 256
 #endif
 
+/* DRC model (drc.h): most points of a sketched curve (POINT lines). Integer (3-16).
+ * Each point costs 12 B in the job geometry and 12 B (its tangent) in the iterator. */
+#ifndef CP_MAX_DRC_POINTS
+#define CP_MAX_DRC_POINTS 12
+#endif
+
+/* DRC model: most thickening passes K (THICKEN K, or derived from TOL). Integer (1-10).
+ * A line has 2^K (points - 1) steps (<= CP_MAX_STEPS); the iterator keeps a stack of K
+ * nodes of 24 B (float). */
+#ifndef CP_MAX_PASSES
+#define CP_MAX_PASSES 7
+#endif
+
+/* Channel model (channel.h): most cross-sections (SECTION lines). Integer (2-4).
+ * Each section costs 48 B in the job geometry and 80 B of node data in the iterator
+ * (float); 4 keeps struct channel_path within its 400 B budget (the example has 3). */
+#ifndef CP_MAX_SECTIONS
+#define CP_MAX_SECTIONS 4
+#endif
+
+/* Surface models compiled into the protocol (SURFACE GSR | CHANNEL | DRC), 0 or 1
+ * each; the canal is always in. A model left out costs no flash (its code is never
+ * referenced) and SURFACE refuses it with error:9. Host builds take all three. The
+ * Cortex-M4F product images are built per model set (mk/m4f.mk M4F_MODELS), each
+ * within the 32 KB flash budget. */
+#ifndef CP_WITH_GSR
+#define CP_WITH_GSR 1
+#endif
+#ifndef CP_WITH_CHANNEL
+#define CP_WITH_CHANNEL 1
+#endif
+#ifndef CP_WITH_DRC
+#define CP_WITH_DRC 1
+#endif
+
 #if CP_LINE_MAX < 16 || CP_LINE_MAX > 250
 #error "CP_LINE_MAX must be in 16..250"
 #endif
@@ -73,6 +108,23 @@
 #endif
 #if CP_MAX_LINK < 0 || CP_MAX_LINK > 64
 #error "CP_MAX_LINK must be in 0..64"
+#endif
+#if CP_MAX_DRC_POINTS < 3 || CP_MAX_DRC_POINTS > 16
+#error "CP_MAX_DRC_POINTS must be in 3..16"
+#endif
+#if CP_MAX_PASSES < 1 || CP_MAX_PASSES > 10
+#error "CP_MAX_PASSES must be in 1..10"
+#endif
+#if ((1 << CP_MAX_PASSES) * (CP_MAX_DRC_POINTS - 1)) > 65535
+#error "2^CP_MAX_PASSES (CP_MAX_DRC_POINTS - 1) must fit a uint16_t step count"
+#endif
+
+#if (CP_WITH_GSR != 0 && CP_WITH_GSR != 1) || (CP_WITH_CHANNEL != 0 && CP_WITH_CHANNEL != 1) || \
+    (CP_WITH_DRC != 0 && CP_WITH_DRC != 1)
+#error "CP_WITH_GSR, CP_WITH_CHANNEL and CP_WITH_DRC must be 0 or 1"
+#endif
+#if CP_MAX_SECTIONS < 2 || CP_MAX_SECTIONS > 4
+#error "CP_MAX_SECTIONS must be in 2..4"
 #endif
 
 #endif /* CP_CONFIG_H */

@@ -10,18 +10,42 @@
 /* have bits RUN needs, per enum path_kind (0: the model is not compiled in) */
 static const uint16_t need[PATH_KINDS] = {
     JOB_HAVE_ALL, /* PATH_CANAL */
-    0u,           /* PATH_GSR */
-    0u,           /* PATH_CHANNEL */
-    0u            /* PATH_DRC */
+#if PATH_HAVE_GSR
+    JOB_HAVE_GSR_CENTER | JOB_HAVE_GSR_RADII | JOB_HAVE_GSR_FRAME | JOB_HAVE_RASTER, /* PATH_GSR */
+#else
+    0u,
+#endif
+#if PATH_HAVE_CHANNEL
+    JOB_HAVE_CHANNEL_SECTION | JOB_HAVE_RASTER, /* PATH_CHANNEL */
+#else
+    0u,
+#endif
+#if PATH_HAVE_DRC
+    JOB_HAVE_DRC_POINTS /* PATH_DRC */
+#else
+    0u
+#endif
 };
 
 /* Model k's command hook (job_model_fn semantics), or JOB_NOT_MINE / 0 when the
- * model is not compiled in. */
+ * model is not compiled in (its keywords are then unknown commands, error:1). */
 static int model_command(unsigned k, struct job *j, const struct job_line *l)
 {
     (void)j;
     (void)l;
     switch (k) {
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        return job_gsr_command(j, l);
+#endif
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        return job_channel_command(j, l);
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        return job_drc_command(j, l);
+#endif
     default:
         return j == NULL ? 0 : JOB_NOT_MINE;
     }
@@ -31,6 +55,21 @@ static int model_command(unsigned k, struct job *j, const struct job_line *l)
 static void model_defaults(unsigned k, union path_geom *g)
 {
     switch (k) {
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        job_gsr_defaults(g);
+        break;
+#endif
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        job_channel_defaults(g);
+        break;
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        job_drc_defaults(g);
+        break;
+#endif
     default:
         g->none = 0;
         break;
@@ -39,34 +78,18 @@ static void model_defaults(unsigned k, union path_geom *g)
 
 void job_init(struct job *j)
 {
-    unsigned i;
-    j->cfg.surf.curve = CANAL_LINE;
-    j->cfg.surf.radius = CANAL_R_CONST;
-    for (i = 0; i < 8u; i++) {
-        j->cfg.surf.cp[i] = CP_R(0.0);
+    /* everything 0 first: LINE, CONST, all parameters, LINES, OUT_SURFACE, ANGLE labels,
+     * span LINES, u0 = u1 = 0, steps and substeps derived, no tool, no feed, nothing
+     * set, SURFACE CANAL (geometry 0), GCODE, no checksums */
+    unsigned char *b = (unsigned char *)j;
+    size_t i;
+    for (i = 0; i < sizeof *j; i++) {
+        b[i] = 0u;
     }
-    for (i = 0; i < 4u; i++) {
-        j->cfg.surf.rp[i] = CP_R(0.0);
-    }
-    j->cfg.mode = TOOLPATH_LINES;
-    j->cfg.output = TOOLPATH_OUT_SURFACE;
-    j->cfg.labels = TOOLPATH_LABEL_ANGLE;
-    j->cfg.span = TOOLPATH_SPAN_LINES;
     j->cfg.n = 1;
-    j->cfg.u0 = CP_R(0.0);
-    j->cfg.u1 = CP_R(0.0);
-    j->cfg.steps = 0;
-    j->cfg.substeps = 0;
     j->cfg.link = TOOLPATH_LINK_AUTO;
     j->cfg.tol = CP_R(0.001);
-    j->cfg.tool_r = CP_R(0.0);
-    j->feed = CP_R(0.0);
     j->rxbuf = 128u;
-    j->have = 0;
-    j->kind = PATH_CANAL;
-    j->geom.none = 0;
-    j->format = JOB_GCODE;
-    j->checksum = 0;
 }
 
 int job_ready(const struct job *j)
@@ -75,11 +98,26 @@ int job_ready(const struct job *j)
     return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
 }
 
+/* Keywords, upper case, in fixed-width rows (no pointer table). The canal's job
+ * commands first (enum order), then the protocol's: job_is_command knows them all. */
+#define KW_W 9u
+static const char kw_cmd[][KW_W] = {"CURVE", "RADIUS", "TOOL",     "LINES",   "CIRCLES",
+                                    "STEPS", "TOL",    "FEED",     "RXBUF",   "FORMAT",
+                                    "CHECKSUM", "SURFACE", "RUN",  "RESUME"};
+enum { KW_CURVE, KW_RADIUS, KW_TOOL, KW_LINES, KW_CIRCLES, KW_STEPS, KW_TOL, KW_FEED, KW_RXBUF,
+       KW_FORMAT, KW_CHECKSUM, KW_JOB, KW_ALL = 14 };
+
+/* Index of s[0..n) among the cnt keywords of tab (rows of width w), or cnt. */
+static unsigned kw_find(const char *s, size_t n, const char *tab, unsigned w, unsigned cnt)
+{
+    unsigned k;
+    for (k = 0; k < cnt && !parse_is(s, n, tab + k * w); k++) {
+    }
+    return k;
+}
+
 int job_is_command(const char *line, size_t len)
 {
-    static const char *const kw[14] = {"CURVE", "RADIUS",   "TOOL",    "LINES", "CIRCLES",
-                                       "STEPS", "TOL",      "FEED",    "FORMAT", "RXBUF",
-                                       "CHECKSUM", "SURFACE", "RUN",   "RESUME"};
     uint16_t st = 0, ln;
     struct job_line l;
     size_t n = 0;
@@ -87,10 +125,8 @@ int job_is_command(const char *line, size_t len)
     while (n < len && line[n] != ' ') {
         n++;
     }
-    for (i = 0; i < 14u; i++) {
-        if (parse_is(line, n, kw[i])) {
-            return 1;
-        }
+    if (kw_find(line, n, kw_cmd[0], KW_W, KW_ALL) < KW_ALL) {
+        return 1;
     }
     ln = (uint16_t)(n < 0xFFFFu ? n : 0xFFFFu);
     l.s = line;
@@ -176,105 +212,76 @@ int job_status_of(int err)
     }
 }
 
-/* Parse tokens first..first+n-1 as numbers into v[]. */
-static int numbers(const char *line, const uint16_t *st, const uint16_t *ln, unsigned first,
-                   unsigned n, cp_real *v)
+/* Token t of l against the cnt keywords of tab (rows of width w): index or cnt. */
+static unsigned tok_kw(const struct job_line *l, unsigned t, const char *tab, unsigned w,
+                       unsigned cnt)
 {
-    unsigned i;
-    for (i = 0; i < n; i++) {
-        int s = parse_real(line + st[first + i], ln[first + i], &v[i]);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-    }
-    return CP_ST_OK;
+    return kw_find(l->s + l->st[t], l->ln[t], tab, w, cnt);
 }
 
-/* "<CMD> <KIND> n1 .. nk": find KIND among names[0..3] (arity[] numbers each) and
- * parse its numbers into v. Returns a wire status; *kind is the index. */
-static int kind_args(const char *line, const uint16_t *st, const uint16_t *ln, unsigned nt,
-                     const char *const *names, const uint8_t *arity, cp_real *v, unsigned *kind)
+/* CURVE and RADIUS kinds (enum canal_curve_kind, enum canal_radius_kind order) and
+ * their numbers (the canal's own counts, curve_nparams/radius_nparams in canal.c). */
+static const char kind_names[2][4][8] = {{"LINE", "ARC", "ELLIPSE", "BEZIER"},
+                                         {"CONST", "LINEAR", "COS", "CUBIC"}};
+static const uint8_t kind_arity[2][4] = {{4u, 5u, 6u, 8u}, {1u, 2u, 3u, 4u}};
+
+/* "CURVE <KIND> n1 .. nk" (radius = 0) or "RADIUS <KIND> n1 .. nk" (radius = 1). */
+static int cmd_kind(struct job *j, const struct job_line *l, unsigned radius)
 {
-    unsigned k;
-    if (nt < 2u) {
+    cp_real v[8];
+    cp_real *dst = radius ? j->cfg.surf.rp : j->cfg.surf.cp;
+    unsigned k, i, na, cap = radius ? 4u : 8u;
+    int s;
+    if (l->nt < 2u) {
         return CP_ST_BAD_ARITY;
     }
-    for (k = 0; k < 4u; k++) {
-        if (parse_is(line + st[1], ln[1], names[k])) {
-            break;
-        }
-    }
+    k = tok_kw(l, 1u, kind_names[radius][0], 8u, 4u);
     if (k == 4u) {
         return CP_ST_BAD_KEYWORD;
     }
-    if (nt != 2u + arity[k]) {
+    na = kind_arity[radius][k];
+    if (l->nt != 2u + na) {
         return CP_ST_BAD_ARITY;
     }
-    *kind = k;
-    return numbers(line, st, ln, 2u, arity[k], v);
-}
-
-static int cmd_curve(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
-                     unsigned nt)
-{
-    static const char *const names[4] = {"LINE", "ARC", "ELLIPSE", "BEZIER"};
-    static const uint8_t arity[4] = {4u, 5u, 6u, 8u};
-    cp_real v[8];
-    unsigned k = 0, i;
-    int s = kind_args(line, st, ln, nt, names, arity, v, &k);
+    s = job_numbers(l, 2u, na, v);
     if (s != CP_ST_OK) {
         return s;
     }
-    if (k == CANAL_ARC || k == CANAL_ELLIPSE) { /* the two angles come last */
-        v[arity[k] - 2u] *= CP_DEG2RAD;
-        v[arity[k] - 1u] *= CP_DEG2RAD;
+    if (!radius && (k == CANAL_ARC || k == CANAL_ELLIPSE)) { /* the two angles come last */
+        v[na - 2u] *= CP_DEG2RAD;
+        v[na - 1u] *= CP_DEG2RAD;
     }
-    j->cfg.surf.curve = (uint8_t)k;
-    for (i = 0; i < 8u; i++) {
-        j->cfg.surf.cp[i] = i < arity[k] ? v[i] : CP_R(0.0);
+    for (i = 0; i < cap; i++) {
+        dst[i] = i < na ? v[i] : CP_R(0.0);
     }
-    j->have |= JOB_HAVE_CURVE;
+    if (radius) {
+        j->cfg.surf.radius = (uint8_t)k;
+        j->have |= JOB_HAVE_RADIUS;
+    } else {
+        j->cfg.surf.curve = (uint8_t)k;
+        j->have |= JOB_HAVE_CURVE;
+    }
     return CP_ST_OK;
 }
 
-static int cmd_radius(struct job *j, const char *line, const uint16_t *st, const uint16_t *ln,
-                      unsigned nt)
-{
-    static const char *const names[4] = {"CONST", "LINEAR", "COS", "CUBIC"};
-    static const uint8_t arity[4] = {1u, 2u, 3u, 4u};
-    cp_real v[4];
-    unsigned k = 0, i;
-    int s = kind_args(line, st, ln, nt, names, arity, v, &k);
-    if (s != CP_ST_OK) {
-        return s;
-    }
-    j->cfg.surf.radius = (uint8_t)k;
-    for (i = 0; i < 4u; i++) {
-        j->cfg.surf.rp[i] = i < arity[k] ? v[i] : CP_R(0.0);
-    }
-    j->have |= JOB_HAVE_RADIUS;
-    return CP_ST_OK;
-}
-
-static int cmd_raster(struct job *j, int circles, const char *line, const uint16_t *st,
-                      const uint16_t *ln, unsigned nt)
+static int cmd_raster(struct job *j, int circles, const struct job_line *l)
 {
     uint32_t n;
     cp_real v[2];
     int s, patch = 0;
-    if (circles && nt == 5u) {
-        if (!parse_is(line + st[4], ln[4], "PATCH")) {
+    if (circles && l->nt == 5u) {
+        if (!parse_is(l->s + l->st[4], l->ln[4], "PATCH")) {
             return CP_ST_BAD_KEYWORD;
         }
         patch = 1;
-    } else if (nt != 4u) {
+    } else if (l->nt != 4u) {
         return CP_ST_BAD_ARITY;
     }
-    s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &n);
+    s = parse_uint(l->s + l->st[1], l->ln[1], 0xFFFFFFFFu, &n);
     if (s != CP_ST_OK) {
         return s;
     }
-    s = numbers(line, st, ln, 2u, 2u, v);
+    s = job_numbers(l, 2u, 2u, v);
     if (s != CP_ST_OK) {
         return s;
     }
@@ -294,30 +301,129 @@ static int cmd_raster(struct job *j, int circles, const char *line, const uint16
     return CP_ST_OK;
 }
 
+/* TOOL NONE | TOOL BALL r [TIP|CENTRE|CENTER] */
+static int cmd_tool(struct job *j, const struct job_line *l)
+{
+    static const char opt[][7] = {"TIP", "CENTRE", "CENTER"};
+    cp_real v;
+    unsigned o = 0;
+    int s;
+    if (l->nt == 2u && parse_is(l->s + l->st[1], l->ln[1], "NONE")) {
+        j->cfg.output = TOOLPATH_OUT_SURFACE;
+        j->cfg.tool_r = CP_R(0.0);
+        return CP_ST_OK;
+    }
+    if (l->nt < 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    if (!parse_is(l->s + l->st[1], l->ln[1], "BALL")) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    if (l->nt != 3u && l->nt != 4u) {
+        return CP_ST_BAD_ARITY;
+    }
+    s = job_numbers(l, 2u, 1u, &v);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    if (!(v > CP_R(0.0)) || v > CANAL_COORD_MAX) {
+        return CP_ST_OUT_OF_RANGE;
+    }
+    if (l->nt == 4u) {
+        o = tok_kw(l, 3u, opt[0], 7u, 3u);
+        if (o == 3u) {
+            return CP_ST_BAD_KEYWORD;
+        }
+    }
+    j->cfg.output = o != 0u ? TOOLPATH_OUT_CENTRE : TOOLPATH_OUT_TIP;
+    j->cfg.tool_r = v;
+    return CP_ST_OK;
+}
+
+/* The one-argument commands STEPS, TOL, FEED, RXBUF, FORMAT, CHECKSUM (k = KW_*). */
+static int cmd_one(struct job *j, unsigned k, const struct job_line *l)
+{
+    static const char word[][7] = {"GCODE", "FRAMES", "OFF", "ON"}; /* value = index & 1 */
+    cp_real v = CP_R(0.0);
+    uint32_t u = 0;
+    int s;
+    if (l->nt != 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    if (k >= KW_FORMAT) { /* FORMAT GCODE|FRAMES, CHECKSUM OFF|ON */
+        unsigned w = k == KW_FORMAT ? 0u : 2u;
+        unsigned i = tok_kw(l, 1u, word[w], 7u, 2u);
+        if (i == 2u) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        if (k == KW_FORMAT) {
+            j->format = (uint8_t)i; /* JOB_GCODE, JOB_FRAMES */
+        } else {
+            j->checksum = (uint8_t)i;
+        }
+        return CP_ST_OK;
+    }
+    if (k == KW_STEPS || k == KW_RXBUF) {
+        s = parse_uint(l->s + l->st[1], l->ln[1], 0xFFFFFFFFu, &u);
+    } else {
+        s = job_numbers(l, 1u, 1u, &v);
+    }
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    switch (k) {
+    case KW_STEPS:
+        if (u > CP_MAX_STEPS) {
+            return CP_ST_TOO_MANY;
+        }
+        if (u == 0u) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->cfg.steps = (uint16_t)u;
+        j->cfg.tol = CP_R(0.0);
+        return CP_ST_OK;
+    case KW_TOL:
+        if (v < CP_R(0.01) || v > CP_R(10000.0)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->cfg.tol = v * CP_R(0.001);
+        j->cfg.steps = 0;
+        return CP_ST_OK;
+    case KW_FEED:
+        if (v < CP_R(0.0) || v > JOB_FEED_MAX || (v > CP_R(0.0) && v < JOB_FEED_MIN)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->feed = v;
+        return CP_ST_OK;
+    default: /* KW_RXBUF */
+        if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        j->rxbuf = (uint16_t)u;
+        return CP_ST_OK;
+    }
+}
+
 int job_command(struct job *j, const char *line, size_t len)
 {
+    static const char names[PATH_KINDS][8] = {"CANAL", "GSR", "CHANNEL", "DRC"};
     uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
     unsigned nt = parse_split(line, len, st, ln, JOB_MAX_TOKENS);
-    const char *w0 = line + (nt > 0u ? st[0] : 0u);
-    size_t l0 = nt > 0u ? ln[0] : 0u;
-    cp_real v;
-    uint32_t u;
-    int s;
+    struct job_line l;
+    unsigned k;
     if (nt == 0u) {
         return JOB_NOT_MINE;
     }
-    if (parse_is(w0, l0, "SURFACE")) {
-        static const char *const names[PATH_KINDS] = {"CANAL", "GSR", "CHANNEL", "DRC"};
-        unsigned k;
+    l.s = line;
+    l.st = st;
+    l.ln = ln;
+    l.nt = nt > JOB_MAX_TOKENS ? JOB_MAX_TOKENS : nt;
+    if (tok_kw(&l, 0u, kw_cmd[KW_JOB], KW_W, 1u) == 0u) { /* SURFACE */
         if (nt != 2u) {
             return CP_ST_BAD_ARITY;
         }
-        for (k = 0; k < PATH_KINDS; k++) {
-            if (parse_is(line + st[1], ln[1], names[k]) && need[k] != 0u) {
-                break;
-            }
-        }
-        if (k == PATH_KINDS) {
+        k = tok_kw(&l, 1u, names[0], 8u, PATH_KINDS);
+        if (k == PATH_KINDS || need[k] == 0u) {
             return CP_ST_BAD_KEYWORD;
         }
         if (k != PATH_CANAL) {
@@ -328,160 +434,31 @@ int job_command(struct job *j, const char *line, size_t len)
         j->kind = (uint8_t)k;
         return CP_ST_OK;
     }
-    {
-        struct job_line l;
-        unsigned k;
-        l.s = line;
-        l.st = st;
-        l.ln = ln;
-        l.nt = nt > JOB_MAX_TOKENS ? JOB_MAX_TOKENS : nt;
-        for (k = 0; k < PATH_KINDS; k++) {
-            if (model_command(k, NULL, &l) == 1) {
-                if (nt > JOB_MAX_TOKENS) {
-                    return CP_ST_BAD_ARITY;
-                }
-                return j->kind == k ? model_command(k, j, &l) : CP_ST_WRONG_SURFACE;
+    for (k = 0; k < PATH_KINDS; k++) {
+        if (model_command(k, NULL, &l) == 1) {
+            if (nt > JOB_MAX_TOKENS) {
+                return CP_ST_BAD_ARITY;
             }
+            return j->kind == k ? model_command(k, j, &l) : CP_ST_WRONG_SURFACE;
         }
     }
-    if (parse_is(w0, l0, "CURVE")) {
-        return nt > JOB_MAX_TOKENS ? CP_ST_BAD_ARITY : cmd_curve(j, line, st, ln, nt);
-    }
-    if (parse_is(w0, l0, "RADIUS")) {
-        return nt > JOB_MAX_TOKENS ? CP_ST_BAD_ARITY : cmd_radius(j, line, st, ln, nt);
+    k = tok_kw(&l, 0u, kw_cmd[0], KW_W, KW_JOB);
+    if (k == KW_JOB) {
+        return JOB_NOT_MINE;
     }
     if (nt > JOB_MAX_TOKENS) {
-        return parse_is(w0, l0, "TOOL") || parse_is(w0, l0, "LINES") ||
-                       parse_is(w0, l0, "CIRCLES") || parse_is(w0, l0, "STEPS") ||
-                       parse_is(w0, l0, "TOL") || parse_is(w0, l0, "FEED") ||
-                       parse_is(w0, l0, "FORMAT") || parse_is(w0, l0, "RXBUF") ||
-                       parse_is(w0, l0, "CHECKSUM")
-                   ? CP_ST_BAD_ARITY
-                   : JOB_NOT_MINE;
+        return CP_ST_BAD_ARITY;
     }
-    if (parse_is(w0, l0, "TOOL")) {
-        if (nt == 2u && parse_is(line + st[1], ln[1], "NONE")) {
-            j->cfg.output = TOOLPATH_OUT_SURFACE;
-            j->cfg.tool_r = CP_R(0.0);
-            return CP_ST_OK;
-        }
-        if (nt < 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        if (!parse_is(line + st[1], ln[1], "BALL")) {
-            return CP_ST_BAD_KEYWORD;
-        }
-        if (nt != 3u && nt != 4u) {
-            return CP_ST_BAD_ARITY;
-        }
-        s = parse_real(line + st[2], ln[2], &v);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-        if (!(v > CP_R(0.0)) || v > CANAL_COORD_MAX) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        if (nt == 4u && !parse_is(line + st[3], ln[3], "TIP") &&
-            !parse_is(line + st[3], ln[3], "CENTRE") && !parse_is(line + st[3], ln[3], "CENTER")) {
-            return CP_ST_BAD_KEYWORD;
-        }
-        j->cfg.output = (nt == 4u && !parse_is(line + st[3], ln[3], "TIP")) ? TOOLPATH_OUT_CENTRE
-                                                                            : TOOLPATH_OUT_TIP;
-        j->cfg.tool_r = v;
-        return CP_ST_OK;
+    switch (k) {
+    case KW_CURVE:
+    case KW_RADIUS:
+        return cmd_kind(j, &l, k);
+    case KW_TOOL:
+        return cmd_tool(j, &l);
+    case KW_LINES:
+    case KW_CIRCLES:
+        return cmd_raster(j, k == KW_CIRCLES, &l);
+    default:
+        return cmd_one(j, k, &l);
     }
-    if (parse_is(w0, l0, "LINES")) {
-        return cmd_raster(j, 0, line, st, ln, nt);
-    }
-    if (parse_is(w0, l0, "CIRCLES")) {
-        return cmd_raster(j, 1, line, st, ln, nt);
-    }
-    if (parse_is(w0, l0, "STEPS")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &u);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-        if (u > CP_MAX_STEPS) {
-            return CP_ST_TOO_MANY;
-        }
-        if (u == 0u) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        j->cfg.steps = (uint16_t)u;
-        j->cfg.tol = CP_R(0.0);
-        return CP_ST_OK;
-    }
-    if (parse_is(w0, l0, "TOL")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        s = parse_real(line + st[1], ln[1], &v);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-        if (v < CP_R(0.01) || v > CP_R(10000.0)) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        j->cfg.tol = v * CP_R(0.001);
-        j->cfg.steps = 0;
-        return CP_ST_OK;
-    }
-    if (parse_is(w0, l0, "FEED")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        s = parse_real(line + st[1], ln[1], &v);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-        if (v < CP_R(0.0) || v > JOB_FEED_MAX || (v > CP_R(0.0) && v < JOB_FEED_MIN)) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        j->feed = v;
-        return CP_ST_OK;
-    }
-    if (parse_is(w0, l0, "FORMAT")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        if (parse_is(line + st[1], ln[1], "GCODE")) {
-            j->format = JOB_GCODE;
-        } else if (parse_is(line + st[1], ln[1], "FRAMES")) {
-            j->format = JOB_FRAMES;
-        } else {
-            return CP_ST_BAD_KEYWORD;
-        }
-        return CP_ST_OK;
-    }
-    if (parse_is(w0, l0, "RXBUF")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        s = parse_uint(line + st[1], ln[1], 0xFFFFFFFFu, &u);
-        if (s != CP_ST_OK) {
-            return s;
-        }
-        if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        j->rxbuf = (uint16_t)u;
-        return CP_ST_OK;
-    }
-    if (parse_is(w0, l0, "CHECKSUM")) {
-        if (nt != 2u) {
-            return CP_ST_BAD_ARITY;
-        }
-        if (parse_is(line + st[1], ln[1], "ON")) {
-            j->checksum = 1;
-        } else if (parse_is(line + st[1], ln[1], "OFF")) {
-            j->checksum = 0;
-        } else {
-            return CP_ST_BAD_KEYWORD;
-        }
-        return CP_ST_OK;
-    }
-    return JOB_NOT_MINE;
 }

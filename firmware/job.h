@@ -36,6 +36,11 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 #define JOB_HAVE_GSR_MASK 0x0038u     /* 0x0008, 0x0010, 0x0020 */
 #define JOB_HAVE_CHANNEL_MASK 0x01C0u /* 0x0040, 0x0080, 0x0100 */
 #define JOB_HAVE_DRC_MASK 0x0E00u     /* 0x0200, 0x0400, 0x0800 */
+#define JOB_HAVE_CHANNEL_SECTION 0x0040u /* SURFACE CHANNEL: at least one SECTION */
+#define JOB_HAVE_DRC_POINTS 0x0200u      /* SURFACE DRC: at least one POINT */
+#define JOB_HAVE_GSR_CENTER 0x0008u /* SURFACE GSR: CENTER X|Y|Z, or all four CENTER P<i> */
+#define JOB_HAVE_GSR_RADII 0x0010u  /* SURFACE GSR: RADII N and RADII B */
+#define JOB_HAVE_GSR_FRAME 0x0020u  /* SURFACE GSR: FRAME */
 
 /* Most tokens of one command line (keyword included). */
 #define JOB_MAX_TOKENS 20u
@@ -75,6 +80,20 @@ int job_numbers(const struct job_line *l, unsigned first, unsigned n, cp_real *v
  * if l's first token is one of the model's keywords, else 0. Otherwise: apply the
  * command to j->geom (j->kind is the model's; set its JOB_HAVE_* bits) and return
  * a wire status. */
+
+/* SURFACE CHANNEL (job_channel.c): SECTION, AXES, SECTIONS CLEAR; defaults: no section. */
+int job_channel_command(struct job *j, const struct job_line *l);
+void job_channel_defaults(union path_geom *g);
+
+/* SURFACE GSR (job_gsr.c): CENTER, RADII, FRAME, FORM; defaults: centre 0, f_t(u) = u,
+ * FRAME FIXED (not set), FORM RATIONAL. */
+int job_gsr_command(struct job *j, const struct job_line *l);
+void job_gsr_defaults(union path_geom *g);
+
+/* SURFACE DRC (job_drc.c): POINT, POINTS CLEAR, THICKEN, EDGE; defaults: no point,
+ * THICKEN AUTO, EDGE OFF. */
+int job_drc_command(struct job *j, const struct job_line *l);
+void job_drc_defaults(union path_geom *g);
 
 /* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE. */
 void job_init(struct job *j);

@@ -30,6 +30,55 @@ int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
         p->info.link = p->u.canal.link;
         p->info.mode = p->u.canal.mode;
         return CP_OK;
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        if (geom == NULL) {
+            return CP_ERR_INVAL;
+        }
+        err = channel_path_init(&p->u.channel, &geom->channel, raster);
+        if (err != CP_OK) {
+            p->u.channel.count = 0;
+            return err;
+        }
+        p->info.count = channel_path_count(&p->u.channel);
+        p->info.n = p->u.channel.n;
+        p->info.steps = p->u.channel.steps;
+        p->info.link = p->u.channel.link;
+        p->info.mode = p->u.channel.mode;
+        return CP_OK;
+#endif
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        if (geom == NULL) {
+            return CP_ERR_INVAL;
+        }
+        err = gsr_path_init(&p->u.gsr, &geom->gsr, raster);
+        if (err != CP_OK) {
+            return err; /* count is 0 */
+        }
+        p->info.count = gsr_path_count(&p->u.gsr);
+        p->info.n = p->u.gsr.n;
+        p->info.steps = p->u.gsr.steps;
+        p->info.link = p->u.gsr.link;
+        p->info.mode = p->u.gsr.mode;
+        return CP_OK;
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        if (geom == NULL) {
+            return CP_ERR_INVAL;
+        }
+        err = drc_path_init(&p->u.drc, &geom->drc, raster);
+        if (err != CP_OK) {
+            return err; /* count is 0 */
+        }
+        p->info.count = drc_path_count(&p->u.drc);
+        p->info.n = p->u.drc.n;
+        p->info.steps = p->u.drc.steps;
+        p->info.link = p->u.drc.link;
+        p->info.mode = p->u.drc.mode;
+        return CP_OK;
+#endif
     default:
         return CP_ERR_INVAL;
     }
@@ -45,6 +94,18 @@ uint32_t path_pos(const struct path *p)
     switch (p->kind) {
     case PATH_CANAL:
         return p->u.canal.k;
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        return p->u.channel.k;
+#endif
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        return p->u.gsr.k;
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        return p->u.drc.k;
+#endif
     default:
         return 0;
     }
@@ -58,6 +119,18 @@ int path_next(struct path *p, struct toolpath_pt *pt)
     switch (p->kind) {
     case PATH_CANAL:
         return toolpath_next(&p->u.canal, pt);
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        return channel_path_next(&p->u.channel, pt);
+#endif
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        return gsr_path_next(&p->u.gsr, pt);
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        return drc_path_next(&p->u.drc, pt);
+#endif
     default:
         return CP_ERR_DONE;
     }
@@ -71,6 +144,18 @@ int path_seek(struct path *p, uint32_t k)
     switch (p->kind) {
     case PATH_CANAL:
         return toolpath_seek(&p->u.canal, k);
+#if PATH_HAVE_CHANNEL
+    case PATH_CHANNEL:
+        return channel_path_seek(&p->u.channel, k);
+#endif
+#if PATH_HAVE_GSR
+    case PATH_GSR:
+        return gsr_path_seek(&p->u.gsr, k);
+#endif
+#if PATH_HAVE_DRC
+    case PATH_DRC:
+        return drc_path_seek(&p->u.drc, k);
+#endif
     default:
         return CP_ERR_RANGE;
     }

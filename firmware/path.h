@@ -39,6 +39,9 @@
 #define PATH_H
 
 #include "toolpath.h"
+#include "channel.h"
+#include "gsr.h"
+#include "drc.h"
 
 enum path_kind {
     PATH_CANAL = 0,
@@ -48,14 +51,19 @@ enum path_kind {
     PATH_KINDS = 4
 };
 
-/* 1 when the model is compiled in (SURFACE accepts it). */
-#define PATH_HAVE_GSR 0
-#define PATH_HAVE_CHANNEL 0
-#define PATH_HAVE_DRC 0
+/* 1 when the model is compiled in (SURFACE accepts it): cp_config.h CP_WITH_<M>.
+ * The types stay declared either way (struct layouts do not depend on the choice);
+ * only path.c and job.c stop referring to the model, so --gc-sections drops its code. */
+#define PATH_HAVE_GSR CP_WITH_GSR
+#define PATH_HAVE_CHANNEL CP_WITH_CHANNEL
+#define PATH_HAVE_DRC CP_WITH_DRC
 
 /* Geometry of the models other than the canal (the canal's is toolpath_cfg.surf). */
 union path_geom {
     uint8_t none; /* no other model compiled in */
+    struct channel_cfg channel;
+    struct gsr_cfg gsr;
+    struct drc_cfg drc;
 };
 
 /* What the stream header tells the host (BEGIN frame, [RUN:...] line). */
@@ -72,6 +80,9 @@ struct path {
     struct path_info info; /* valid after a successful path_init */
     union {
         struct toolpath canal;
+        struct channel_path channel;
+        struct gsr_path gsr;
+        struct drc_path drc;
     } u;
 };
 

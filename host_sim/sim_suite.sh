@@ -132,8 +132,9 @@ identical)
     done
     ;;
 models)
-    # the seed 001-003 models (SURFACE GSR | CHANNEL | DRC): every tests/jobs/model_*.job,
-    # judged, natively and under QEMU, and the two raw RUN streams byte-identical
+    # the seed 001-003 models (SURFACE GSR | CHANNEL | DRC): every tests/jobs/model_<m>_*.job,
+    # judged, natively (all models) and under QEMU (image fw-<m>.elf), and the two raw
+    # RUN streams byte-identical
     for f in "$J"/model_*.job; do
         [ -f "$f" ] || continue
         job=$(basename "$f" .job)
@@ -141,6 +142,9 @@ models)
         r1=$?
         result "${job}_native" $r1 "$(figs "${job}_native")"
         if command -v "$QEMU" >/dev/null 2>&1; then
+            # the product image of that model: the canal + model <m> (mk/m4f.mk fw-<m>.elf)
+            m=${job#model_}; m=${m%%_*}
+            ELF=$B/m4f/fw-$m.elf
             hs "${job}_qemu" qemu --job "$f" --csv "$OUT/${job}_qemu.csv" --raw "$OUT/${job}_qemu.raw"
             r2=$?
             result "${job}_qemu" $r2 "$(figs "${job}_qemu")"

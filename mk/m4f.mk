@@ -52,7 +52,7 @@ M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
 M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
-        guard-warn guard-budget guard-stack guard-selftest m4f-pty
+        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images
 
 ##
 ## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
@@ -80,10 +80,38 @@ $(M4F)/bench/%.o: bench/%.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_CFLAGS) -Ibench -Ihal/cortex-m -MMD -MP -c $< -o $@
 
-$(M4F)/fw.elf: $(M4F_FW_OBJ) $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld \
-               linker/budget.txt
+# Product images: the canal plus a set of surface models (cp_config.h CP_WITH_GSR,
+# CP_WITH_CHANNEL, CP_WITH_DRC). Only path.c and job.c depend on the set (struct
+# layouts do not), so every other object is shared with unit.elf and bench.elf,
+# which carry all models. fw-<set>.elf per set; fw.elf is the set M4F_FW_SET. Every
+# image of M4F_IMG_SETS is held to linker/budget.txt by guard-images.
+M4F_SET_all     :=
+M4F_SET_gsr     := -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
+M4F_SET_channel := -DCP_WITH_GSR=0 -DCP_WITH_DRC=0
+M4F_SET_drc     := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0
+M4F_SET_canal   := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
+M4F_FW_SET   ?= canal
+M4F_IMG_SETS ?= canal gsr channel drc
+M4F_SHARED_OBJ := $(filter-out $(M4F)/fw/path.o $(M4F)/fw/job.o,$(M4F_FW_OBJ))
+M4F_SET_OBJ   = $(M4F)/set-$(1)/path.o $(M4F)/set-$(1)/job.o
+
+$(M4F)/set-%/path.o: firmware/path.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_FWFLAGS) $(M4F_SET_$*) -MMD -MP -c $< -o $@
+
+$(M4F)/set-%/job.o: firmware/job.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_FWFLAGS) $(M4F_SET_$*) -MMD -MP -c $< -o $@
+
+.SECONDARY: $(foreach s,all gsr channel drc canal,$(call M4F_SET_OBJ,$(s)))
+
+$(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F)/set-%/path.o $(M4F)/set-%/job.o $(M4F_PORT_OBJ) \
+                 linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386.ld -Wl,--defsym=CP_STACK=$(M4F_STACK) \
-	    -Wl,-Map=$@.map -o $@ $(M4F_FW_OBJ) $(M4F_PORT_OBJ) -lm
+	    -Wl,-Map=$@.map -o $@ $(M4F_SHARED_OBJ) $(call M4F_SET_OBJ,$*) $(M4F_PORT_OBJ) -lm
+
+$(M4F)/fw.elf: $(M4F)/fw-$(M4F_FW_SET).elf
+	$(Q)cp $< $@ && cp $<.map $@.map
 
 ## m4f-unit: unit tests on QEMU mps2-an386 (runner word "m4f")
 m4f-unit: $(M4F)/unit.elf
@@ -116,7 +144,25 @@ guard-budget: $(M4F)/fw.elf
 
 M4F_STACK_ARGS = --elf $(M4F)/fw.elf --root Reset_Handler --isr "$(M4F_ISRS)" \
     --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
-    $(M4F_FW_OBJ:.o=.ci) $(M4F_PORT_OBJ:.o=.ci)
+    $(M4F_SHARED_OBJ:.o=.ci) $(patsubst %.o,%.ci,$(call M4F_SET_OBJ,$(M4F_FW_SET))) \
+    $(M4F_PORT_OBJ:.o=.ci)
+# the same for image fw-<set>.elf
+M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_ISRS)" \
+    --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
+    $(M4F_SHARED_OBJ:.o=.ci) $(patsubst %.o,%.ci,$(call M4F_SET_OBJ,$(1))) $(M4F_PORT_OBJ:.o=.ci)
+
+## guard-images: every product image fw-<set>.elf (M4F_IMG_SETS) within linker/budget.txt:
+##               flash, RAM, per-function stack and the static worst stack path (word "images")
+guard-images: $(foreach s,$(M4F_IMG_SETS),$(M4F)/fw-$(s).elf)
+	$(Q)pass=0; fail=0; for s in $(M4F_IMG_SETS); do \
+	    if $(MAKE) --no-print-directory guard-image-$$s > $(M4F)/guard-$$s.log 2>&1; then \
+	        pass=$$((pass + 1)); echo "  PASS fw-$$s.elf: $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"{t=$$2} $$1==".bss"{b=$$2} END{print "text " t " B, bss " b " B"}'), stack $$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' $(M4F)/guard-$$s.log) B worst case"; \
+	    else fail=$$((fail + 1)); echo "  FAIL fw-$$s.elf (see $(M4F)/guard-$$s.log)"; tail -n 5 $(M4F)/guard-$$s.log; fi; \
+	done; echo "images: $$pass passed, $$fail failed"; [ $$fail -eq 0 ]
+
+guard-image-%: $(M4F)/fw-%.elf
+	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard
+	$(Q)sh tools/stack.sh --guard $(call M4F_STACK_ARGS_SET,$*)
 
 ## stack: worst-case static stack path of fw.elf (from gcc .su/.ci) and the largest frames
 stack: $(M4F)/fw.elf
@@ -144,7 +190,7 @@ guard-warn:
 ## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt
 guard-selftest: $(M4F_PORT_OBJ)
 	$(Q)CC="$(CC)" M4F_CC="$(M4F_CC)" HOST_CFLAGS="$(HOST_CFLAGS)" \
-	    M4F_FWFLAGS="$(M4F_FWFLAGS)" M4F_LDFLAGS="$(M4F_LDFLAGS)" M4F_STACK="$(M4F_STACK)" \
+	    M4F_FWFLAGS="$(M4F_FWFLAGS) $(M4F_SET_$(M4F_FW_SET))" M4F_LDFLAGS="$(M4F_LDFLAGS)" M4F_STACK="$(M4F_STACK)" \
 	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" \
 	    sh tools/guard_selftest.sh $(M4F_PORT_OBJ)
 

@@ -38,6 +38,9 @@ $(BUILD)/host/fw_native: $(HOST_FW_OBJ) $(POSIX_OBJ)
 ## host-sim: build build/host/host_sim (pty host simulator, docs/HOST_SIM.md)
 host-sim: $(BUILD)/host/host_sim
 $(BUILD)/host/host_sim: $(HOSTSIM_OBJ) $(BUILD)/host/host_sim_obj/ref_canal.o \
+                       $(BUILD)/host/host_sim_obj/ref_drc.o \
+                       $(BUILD)/host/host_sim_obj/ref_channel.o \
+                       $(BUILD)/host/host_sim_obj/ref_gsr.o \
                        $(BUILD)/host/host_sim_obj/frame.o
 	$(Q)$(CC) -o $@ $^ -lm
 
@@ -48,6 +51,21 @@ $(BUILD)/host/host_sim_obj/frame.o: firmware/frame.c firmware/frame.h
 
 # the judge's independent reference model (no firmware code)
 $(BUILD)/host/host_sim_obj/ref_canal.o: tests/ref_canal.c tests/ref_canal.h
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
+
+# the DRC judge's independent reference (tests/ref_drc.c, no firmware code)
+$(BUILD)/host/host_sim_obj/ref_drc.o: tests/ref_drc.c tests/ref_drc.h
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
+
+# the channel judge's independent reference (tests/ref_channel.c, no firmware code)
+$(BUILD)/host/host_sim_obj/ref_channel.o: tests/ref_channel.c tests/ref_channel.h
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
+
+# the GSR judge's independent reference (tests/ref_gsr.c, no firmware code)
+$(BUILD)/host/host_sim_obj/ref_gsr.o: tests/ref_gsr.c tests/ref_gsr.h
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
 
@@ -83,8 +101,8 @@ sim-robust: $(BUILD)/host/host_sim $(BUILD)/host/fw_fake
 # RUN suites (host_sim/sim_suite.sh): each prints "<word>: N passed, N failed"
 .PHONY: sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models
 
-## sim-models: every tests/jobs/model_*.job (GSR, CHANNEL, DRC) judged, native and QEMU, streams identical (word "models")
-sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
+## sim-models: every tests/jobs/model_<m>_*.job (GSR, CHANNEL, DRC) judged, native and QEMU (image fw-<m>.elf), streams identical (word "models")
+sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim $(foreach s,gsr channel drc,$(BUILD)/m4f/fw-$(s).elf)
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh models
 
 ## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")

@@ -1,0 +1,900 @@
+/* channel.c - channel surface from superellipse cross-sections (channel.h).
+ * SPDX-License-Identifier: MIT
+ *
+ * Written for flash: one evaluation path (guide -> row at u, angle -> point at w) serves
+ * the init walks and the stream alike; the x, y, z and the a/cos, b/sin halves run as
+ * fixed loops over arrays. A struct cp_vec3 and a struct channel_section are read as 3
+ * and 12 consecutive reals (static asserts below; a pointer to a struct converted to a
+ * pointer to its first member, C99 6.7.2.1).
+ */
+#include "channel.h"
+
+/* The five laws along the guide (natural cubic splines, B13). */
+enum { Q_S = 0, Q_N = 1, Q_JI = 2, Q_JII = 3, Q_J12 = 4, NQ = 5 };
+/* Offsets in a section read as 12 reals: a, b, n, centre, x axis, normal. */
+enum { S_C = 3, S_X = 6, S_Z = 9 };
+
+#define VR(v) ((cp_real *)(v))
+#define CVR(v) ((const cp_real *)(v))
+
+CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), vec3_is_3_reals);
+CP_STATIC_ASSERT(sizeof(struct channel_section) == 12u * sizeof(cp_real), section_is_12_reals);
+
+#define SAG_MARGIN CP_R(0.8) /* aim the derived step counts at 80 % of the tolerance */
+
+/* ---------------------------------------------------------------------------------------
+ * K_S, K_J (B11) by ln Gamma and digamma on 0 < x <= 4.
+ *
+ * Shift: Gamma(x) = Gamma(z) / pr, pr = prod_{i<S} (x + i), z = x + S, S = LG_SHIFT, so
+ *   ln Gamma(x) = st(z) - ln pr,   psi(x) = ps(z) - rs,   rs = sum_{i<S} 1/(x + i);
+ * Stirling: st(z) = (z - 1/2) ln z - z + ln sqrt(2 pi) + sum_k B_2k / (2k (2k-1) z^(2k-1)),
+ *           ps(z) = ln z - 1/(2z) - sum_k B_2k / (2k z^2k).
+ * With p = 1/n, K_S = 2p Gamma(p)^2 / Gamma(2p) and K_J = p Gamma(p) Gamma(3p) / Gamma(4p)
+ * are K = c p prod_k Gamma(k p)^e_k, e = (2, -1, 0, 0) and (1, 0, 1, -1). Both e have
+ * sum e_k = 1 and sum e_k (z_k - 1/2) = S - 1/2, so with ln z = ln S + ln(z/S) the large
+ * parts of st collapse into one constant, LG_C0 = S^(S - 1/2) e^-S sqrt(2 pi):
+ *   K = c p LG_C0 prod_k pr_k^-e_k exp(sum_k e_k ((z_k - 1/2) ln(z_k/S) + sum_k(z_k))),
+ * and (sum e_k k = 0) d ln K/dn = -p^2 d ln K/dp = -p^2 (n + sum_k e_k k (ps_k - ln S - rs_k)).
+ * S is a power of two: z/S is exact and ln(z/S) in [0, ln 2].
+ * Error analysis. Float: S = 4 (z >= 4), series to z^-7 / z^-6: truncation <= 1/(1188 z^9)
+ * = 3.2e-9 in st and 1/(240 z^8) = 6.4e-8 in ps. Rounding: the exponent is a sum of terms
+ * <= 7.5 ln 2 = 5.2 (n = 1; <= 0.8 for n >= 4) whose ln(z/S) carry a few ulp of <= 0.7;
+ * the products a few ulp: K to ~5e-7 relative (the laws' a and b amplify K's error about
+ * 4-fold near the example's isotropic middle), and at the nodes it cancels exactly (S_i =
+ * a b K_S(n_i) and a(u = i) use the same K_S(n_i)). Double: S = 16 (z >= 16), series to
+ * z^-11: truncation <= 1/(156 z^13) = 1.4e-18; rounding a few ulp of the exponent (<= 4.4):
+ * ~1e-15. pr <= 19!/3! = 2e16 (double), 8!/0! (float) and >= x (no overflow or
+ * underflow). Fixed work: S products and divisions, 2 Horner polynomials, 1 log per x,
+ * no iteration. */
+#if CP_REAL_DOUBLE
+#define LG_SHIFT 16u
+#define LG_TERMS 6u
+#define LG_C0 1300882150951.44565933
+static const cp_real lg_c[2][LG_TERMS] = {
+    {1.0 / 12.0, -1.0 / 360.0, 1.0 / 1260.0, -1.0 / 1680.0, 1.0 / 1188.0, -691.0 / 360360.0},
+    {1.0 / 12.0, -1.0 / 120.0, 1.0 / 252.0, -1.0 / 240.0, 1.0 / 132.0, 0.0}};
+#else
+#define LG_SHIFT 4u
+#define LG_TERMS 4u
+#define LG_C0 5.87654378f
+static const cp_real lg_c[2][LG_TERMS] = {{8.33333333e-2f, -2.77777778e-3f, 7.93650794e-4f, -5.95238095e-4f},
+                                          {8.33333333e-2f, -8.33333333e-3f, 3.96825397e-3f, 0.0f}};
+#endif
+
+/* o = K_S, K_J, d ln K_S/dn, d ln K_J/dn at n in [1, CHANNEL_N_MAX]. */
+static void kconst(cp_real n, cp_real *o)
+{
+    cp_real p = CP_R(1.0) / n, pr[4], st[4], ps[4];
+    unsigned k, i;
+    for (k = 0; k < 4u; k++) { /* x = (k + 1) p */
+        cp_real x = (cp_real)(k + 1u) * p, rs = CP_R(0.0), z, zi, z2, lz, hs, hp;
+        pr[k] = CP_R(1.0);
+        for (i = 0; i < LG_SHIFT; i++) {
+            cp_real v = x + (cp_real)i;
+            pr[k] *= v;
+            rs += CP_R(1.0) / v;
+        }
+        z = x + (cp_real)LG_SHIFT;
+        zi = CP_R(1.0) / z;
+        z2 = zi * zi;
+        lz = cp_log(z * (CP_R(1.0) / (cp_real)LG_SHIFT));
+        hs = CP_R(0.0);
+        hp = CP_R(0.0);
+        for (i = LG_TERMS; i-- > 0u;) {
+            hs = hs * z2 + lg_c[0][i];
+            hp = hp * z2 + lg_c[1][i];
+        }
+        st[k] = (z - CP_R(0.5)) * lz + zi * hs;
+        ps[k] = lz - CP_R(0.5) * zi - z2 * hp - rs;
+    }
+    o[0] = CP_R(2.0) * p * LG_C0 * pr[1] / (pr[0] * pr[0]) * cp_exp(CP_R(2.0) * st[0] - st[1]);
+    o[1] = p * LG_C0 * pr[3] / (pr[0] * pr[2]) * cp_exp(st[0] + st[2] - st[3]);
+    o[2] = -p * p * (n + CP_R(2.0) * (ps[0] - ps[1]));
+    o[3] = -p * p * (n + ps[0] + CP_R(3.0) * ps[2] - CP_R(4.0) * ps[3]);
+}
+
+cp_real channel_ks(cp_real n)
+{
+    cp_real o[4];
+    kconst(n, o);
+    return o[0];
+}
+
+cp_real channel_kj(cp_real n)
+{
+    cp_real o[4];
+    kconst(n, o);
+    return o[1];
+}
+
+/* ---------------------------------------------------------------------------------------
+ * Small vector helpers (3 reals). */
+static cp_real dot(const cp_real *a, const cp_real *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross(const cp_real *a, const cp_real *b, cp_real *o)
+{
+    cp_real r[3];
+    unsigned k;
+    for (k = 0; k < 3u; k++) {
+        unsigned i = (k + 1u) % 3u, j = (k + 2u) % 3u;
+        r[k] = a[i] * b[j] - a[j] * b[i];
+    }
+    for (k = 0; k < 3u; k++) {
+        o[k] = r[k];
+    }
+}
+
+static cp_real norm(const cp_real *a)
+{
+    return cp_sqrt(dot(a, a));
+}
+
+/* v /= |v|; returns |v|. */
+static cp_real unit(cp_real *v)
+{
+    cp_real n = norm(v);
+    unsigned k;
+    for (k = 0; k < 3u; k++) {
+        v[k] /= n;
+    }
+    return n;
+}
+
+/* a + k pi nearest ref (unwrapping mod pi). */
+static cp_real near(cp_real a, cp_real ref)
+{
+    return a + CP_PI * cp_floor((ref - a) / CP_PI + CP_R(0.5));
+}
+
+/* Row vector v times the rotation of eq. (10)-(12) about axis k (0 x: T(theta), 1 y:
+ * T(phi), 2 z: T(psi)): the two other coordinates i = k+1, j = k+2 (mod 3) become
+ * (v_i c - v_j s, v_i s + v_j c). R = A B C (row vectors): row r of R = e_r A B C, the
+ * factors applied left to right. */
+void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_real phi,
+                   uint8_t order)
+{
+    static const uint8_t ax[2][3] = {{2u, 0u, 1u}, {0u, 1u, 2u}};
+    cp_real ang[3];
+    unsigned r, k, o = order == CHANNEL_ORDER_PRINTED ? 1u : 0u;
+    ang[0] = theta;
+    ang[1] = phi;
+    ang[2] = psi;
+    for (r = 0; r < 2u; r++) {
+        cp_real *v = r ? VR(&s->z) : VR(&s->x);
+        v[0] = v[1] = v[2] = CP_R(0.0);
+        v[2u * r] = CP_R(1.0); /* rows 0 (x) and 2 (z) */
+        for (k = 0; k < 3u; k++) {
+            unsigned a = ax[o][k], i = (a + 1u) % 3u, j = (a + 2u) % 3u;
+            cp_real sn, cs, vi = v[i], vj = v[j];
+            cp_sincos(ang[a], &sn, &cs);
+            v[i] = vi * cs - vj * sn;
+            v[j] = vi * sn + vj * cs;
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------------------------
+ * Row at u: guide segment m = floor(u) (last: N-2), t = u - m.
+ * Guide: quintic Hermite on t in [0, 1] from P0, M0, A0 (t = 0) and P1, M1, A1 (t = 1) in
+ * monomial form (the basis of B.2 step 2 expanded): c0 = P0, c1 = M0, c2 = A0/2 and
+ *   c3 = 10 dP - 6 M0 - 4 M1 - 3/2 A0 + 1/2 A1, c4 = -15 dP + 8 M0 + 7 M1 + 3/2 A0 - A1,
+ *   c5 = 6 dP - 3 M0 - 3 M1 - 1/2 A0 + 1/2 A1  (rows of hc over dP, M0, M1, A0, A1);
+ * value, first and half the second derivative by one Horner pass (exact P0, M0, A0 at
+ * t = 0: every higher term is multiplied by t = 0). */
+static const cp_real hc[3][5] = {
+    {CP_R(10.0), CP_R(-6.0), CP_R(-4.0), CP_R(-1.5), CP_R(0.5)},
+    {CP_R(-15.0), CP_R(8.0), CP_R(7.0), CP_R(1.5), CP_R(-1.0)},
+    {CP_R(6.0), CP_R(-3.0), CP_R(-3.0), CP_R(-0.5), CP_R(0.5)}};
+
+/* Frame from the unit tangent r->t: e1 = unit(e_y x tau) = (tau_z, 0, -tau_x)/vn,
+ * e2 = tau x e1; flags CHANNEL_ROW_FRAME at vn <= CHANNEL_FRAME_TOL; returns vn. */
+static cp_real frame(struct channel_row *r)
+{
+    cp_real vn;
+    r->e1[0] = r->t[2];
+    r->e1[1] = CP_R(0.0);
+    r->e1[2] = -r->t[0];
+    vn = unit(r->e1);
+    if (!(vn > CHANNEL_FRAME_TOL)) {
+        r->flags |= CHANNEL_ROW_FRAME;
+    }
+    cross(r->t, r->e1, r->e2);
+    return vn;
+}
+
+/* Second derivative of law q at node i (natural ends: 0). */
+static cp_real y2at(const struct channel *ch, unsigned q, unsigned i)
+{
+    return (i == 0u || i + 1u >= ch->ns) ? CP_R(0.0) : ch->y2[q][i - 1u];
+}
+
+/* Guide part: L, L', L'' -> tau, frame, |L'|; curvature vector kv = (L'' - (tau.L'')
+ * tau)/|L'|^2, so kv.e_i = L''.e_i/|L'|^2; frame twist w = e2.e1' = e2.(tau'_z, 0,
+ * -tau'_x)/vn with tau' = (L'' - (tau.L'') tau)/|L'|, whose tau part drops out
+ * (e2_x tau_z - e2_z tau_x = 0): w = (e2_x L''_z - e2_z L''_x)/(|L'| vn).
+ * Laws: natural cubic splines on [m, m + 1] (exact node values at t = 0). */
+void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
+{
+    const cp_real *s0, *s1;
+    cp_real l2[3], v[NQ], dv[NQ], kk[4];
+    cp_real t, tt, vn, w, pp, lp, js, qq, lq, r1, r2, a, b, dd, e, dal;
+    unsigned m, k, j, i;
+    r->u = u;
+    r->flags = 0u;
+    if (!(u > CP_R(0.0))) {
+        u = CP_R(0.0);
+    }
+    if (u > (cp_real)(ch->ns - 1u)) {
+        u = (cp_real)(ch->ns - 1u);
+    }
+    m = (unsigned)u;
+    if (m + 1u >= ch->ns) {
+        m = ch->ns - 2u;
+    }
+    t = u - (cp_real)m;
+    s0 = CVR(&ch->cfg->s[m]);
+    s1 = CVR(&ch->cfg->s[m + 1u]);
+    for (k = 0; k < 3u; k++) {
+        cp_real in[5], c[6], h = CP_R(0.0), d1 = CP_R(0.0), d2 = CP_R(0.0);
+        c[0] = s0[S_C + k];
+        in[0] = s1[S_C + k] - c[0];
+        in[1] = ch->d[m] * s0[S_Z + k];
+        in[2] = ch->d[m + 1u] * s1[S_Z + k];
+        in[3] = ch->acc[m][k];
+        in[4] = ch->acc[m + 1u][k];
+        c[1] = in[1];
+        c[2] = CP_R(0.5) * in[3];
+        for (j = 0; j < 3u; j++) {
+            c[j + 3u] = CP_R(0.0);
+            for (i = 0; i < 5u; i++) {
+                c[j + 3u] += hc[j][i] * in[i];
+            }
+        }
+        for (j = 6u; j-- > 0u;) {
+            d2 = d2 * t + d1;
+            d1 = d1 * t + h;
+            h = h * t + c[j];
+        }
+        r->l[k] = h;
+        r->t[k] = d1;
+        l2[k] = CP_R(2.0) * d2;
+    }
+    r->sp = unit(r->t);
+    vn = frame(r);
+    for (k = 0; k < 2u; k++) {
+        r->k[k] = dot(l2, k ? r->e2 : r->e1) / (r->sp * r->sp);
+    }
+    w = (r->e2[0] * l2[2] - r->e2[2] * l2[0]) / (r->sp * vn);
+    tt = CP_R(1.0) - t;
+    for (k = 0; k < NQ; k++) {
+        cp_real ya = ch->y[k][m], yb = ch->y[k][m + 1u];
+        cp_real sa = y2at(ch, k, m), sb = y2at(ch, k, m + 1u);
+        v[k] = tt * ya + t * yb + ((tt * tt * tt - tt) * sa + (t * t * t - t) * sb) / CP_R(6.0);
+        dv[k] = yb - ya + ((CP_R(1.0) - CP_R(3.0) * tt * tt) * sa + (CP_R(3.0) * t * t - CP_R(1.0)) * sb) /
+                              CP_R(6.0);
+    }
+    r->s = v[Q_S];
+    r->n = v[Q_N];
+    if (!(v[Q_S] > CP_R(0.0)) || !(v[Q_N] >= CP_R(1.0))) {
+        r->flags |= CHANNEL_ROW_BAD_LAW;
+    }
+    /* closed-form section (B.2 step 6): P = ab, Q = a^2 + b^2; a + b = r1, a - b = r2;
+     * b = P/a (no cancellation). Log-derivatives for the normal: P'/P, Q'/Q. */
+    kconst(v[Q_N], kk);
+    pp = v[Q_S] / kk[0];
+    lp = dv[Q_S] / v[Q_S] - kk[2] * dv[Q_N];
+    js = v[Q_JI] + v[Q_JII];
+    qq = js / (kk[1] * pp);
+    lq = (dv[Q_JI] + dv[Q_JII]) / js - kk[3] * dv[Q_N] - lp; /* Q'/Q */
+    if (qq < CP_R(2.0) * pp) {
+        qq = CP_R(2.0) * pp;
+        r->flags |= CHANNEL_ROW_CLAMP;
+    }
+    r1 = cp_sqrt(qq + CP_R(2.0) * pp);
+    r2 = cp_sqrt(qq - CP_R(2.0) * pp);
+    a = CP_R(0.5) * (r1 + r2);
+    b = pp / a;
+    r->ab[0] = a;
+    r->ab[1] = b;
+    /* orientation, tensor form; then the multiple of pi nearest the blend of node angles */
+    dd = v[Q_JII] - v[Q_JI];
+    e = CP_R(2.0) * v[Q_J12];
+    r->alpha = near(CP_R(0.5) * cp_atan2(e, dd), ch->al[m] + t * (ch->al[m + 1u] - ch->al[m]));
+    cp_sincos(r->alpha, &r->sa, &r->ca);
+    /* derivatives, logarithmic: x = a'/a, b'/b = P'/P - x; Q'/2 = a^2 x + b^2 (P'/P - x), so
+     * x = (Q'/2 - b^2 P'/P)/(a^2 - b^2), a^2 - b^2 = r1 r2; alpha' = (D J12' - J12 D')/(D^2 + E^2).
+     * Near a = b (r2 <= 1e-3 r1) both are ill-conditioned: isotropic growth, alpha' = 0. */
+    if (r2 > CP_R(1.0e-3) * r1) {
+        r->dab[0] = (CP_R(0.5) * lq * qq - b * b * lp) / (r1 * r2);
+        dal = (dd * dv[Q_J12] - v[Q_J12] * (dv[Q_JII] - dv[Q_JI])) / (dd * dd + e * e);
+    } else {
+        r->dab[0] = CP_R(0.5) * lp;
+        dal = CP_R(0.0);
+    }
+    r->dab[1] = lp - r->dab[0];
+    r->q = CP_R(2.0) / v[Q_N];
+    r->dq = -r->q * dv[Q_N] / v[Q_N];
+    r->wr = dal + w;
+}
+
+/* (x, y) rotated by alpha. */
+static void rot(const struct channel_row *r, const cp_real *v, cp_real *o)
+{
+    o[0] = v[0] * r->ca - v[1] * r->sa;
+    o[1] = v[0] * r->sa + v[1] * r->ca;
+}
+
+/* o = f v + x e1 + y e2. */
+static void comb(const struct channel_row *r, cp_real *o, const cp_real *v, cp_real f, cp_real x,
+                 cp_real y)
+{
+    unsigned k;
+    for (k = 0; k < 3u; k++) {
+        o[k] = f * v[k] + x * r->e1[k] + y * r->e2[k];
+    }
+}
+
+/* Point and normal (B.2 step 7). In the section axes (index 0: a and cos w, 1: b and
+ * sin w; |cos w| or |sin w| below CHANNEL_AXIS_SNAP counts as 0) with (X', Y') =
+ * R(alpha)(X, Y) the in-plane offset:
+ *   P = L + X' e1 + Y' e2,  P_u . tau = |L'| g,  g = 1 - k.(P - L) = 1 - k1 X' - k2 Y',
+ *   in-plane part of P_u = R(alpha) [(X (a'/a + ln|cos w| q'), Y (b'/b + ln|sin w| q'))
+ *   + (alpha' + w)(-Y, X)] (rotation by 90 degrees commutes with R(alpha));
+ * the outward in-plane normal of the superellipse m ~ R(alpha)(sgn(c)|c|^(2-q)/a,
+ * sgn(s)|s|^(2-q)/b) (|c|^(2-q) = c^2/|c|^q) is _|_ P_w, so N ~ g |L'| m - (m.P_u) tau
+ * is _|_ P_u too: the exact unit normal, pointing away from the guide (m.P_u taken in
+ * the section axes: rotations keep dot products). */
+void channel_point(const struct channel_row *r, cp_real w, struct cp_vec3 *p, struct cp_vec3 *nrm,
+                   cp_real *g)
+{
+    cp_real cs[2], x[2], v[2], mm[3], xp[2], m[2], gg, sm;
+    unsigned i;
+    cp_sincos(w, &cs[1], &cs[0]);
+    for (i = 0; i < 2u; i++) {
+        cp_real c = cs[i], lg = CP_R(0.0), e = CP_R(0.0);
+        if (cp_fabs(c) >= CHANNEL_AXIS_SNAP) {
+            lg = cp_log(cp_fabs(c));
+            e = cp_exp(r->q * lg);
+        }
+        x[i] = r->ab[i] * (c < CP_R(0.0) ? -e : e);
+        v[i] = x[i] * (r->dab[i] + lg * r->dq);
+        mm[i] = e > CP_R(0.0) ? c * cp_fabs(c) / (e * r->ab[i]) : CP_R(0.0);
+    }
+    v[0] -= r->wr * x[1];
+    v[1] += r->wr * x[0];
+    mm[2] = CP_R(0.0);
+    (void)unit(mm);
+    sm = mm[0] * v[0] + mm[1] * v[1];
+    rot(r, x, xp);
+    rot(r, mm, m);
+    gg = CP_R(1.0) - r->k[0] * xp[0] - r->k[1] * xp[1];
+    comb(r, VR(p), r->l, CP_R(1.0), xp[0], xp[1]);
+    comb(r, VR(nrm), r->t, -sm, gg * r->sp * m[0], gg * r->sp * m[1]);
+    (void)unit(VR(nrm));
+    *g = gg;
+}
+
+/* ---------------------------------------------------------------------------------------
+ * Init. */
+int channel_section_check(const struct channel_section *s)
+{
+    const cp_real *v = CVR(s);
+    unsigned i;
+    for (i = 0; i < 12u; i++) {
+        if (!cp_isfinite(v[i])) {
+            return CP_ERR_NONFINITE;
+        }
+        if (i >= 3u && cp_fabs(v[i]) > CHANNEL_COORD_MAX) {
+            return CP_ERR_RANGE;
+        }
+    }
+    if (!(s->a > CP_R(0.0)) || !(s->b > CP_R(0.0))) {
+        return CP_ERR_SECTION;
+    }
+    if (!(s->n >= CP_R(1.0))) {
+        return CP_ERR_EXPONENT;
+    }
+    if (s->a > CHANNEL_COORD_MAX || s->b > CHANNEL_COORD_MAX || s->n > CHANNEL_N_MAX ||
+        cp_fabs(dot(v + S_X, v + S_X) - CP_R(1.0)) > CHANNEL_AXES_TOL ||
+        cp_fabs(dot(v + S_Z, v + S_Z) - CP_R(1.0)) > CHANNEL_AXES_TOL ||
+        cp_fabs(dot(v + S_X, v + S_Z)) > CHANNEL_AXES_TOL) {
+        return CP_ERR_RANGE;
+    }
+    if (s->n != CP_R(2.0) && cp_fabs(s->a - s->b) <= CHANNEL_ISO_TOL * (s->a > s->b ? s->a : s->b)) {
+        return CP_ERR_ISOTROPIC;
+    }
+    return CP_OK;
+}
+
+int channel_init(struct channel *ch, const struct channel_cfg *cfg)
+{
+    struct channel_row r;
+    cp_real cq[CP_MAX_SECTIONS], cv[CP_MAX_SECTIONS][3], cl[CP_MAX_SECTIONS], kk[4];
+    unsigned i, e, k, q, ns;
+    int err;
+    ch->ns = 0u;
+    ch->clamps = 0u;
+    if (cfg == NULL) {
+        return CP_ERR_INVAL;
+    }
+    ns = cfg->count;
+    if (ns < 2u) {
+        return CP_ERR_TOO_FEW;
+    }
+    if (ns > CP_MAX_SECTIONS) {
+        return CP_ERR_TOO_MANY;
+    }
+    ch->cfg = cfg;
+    ch->ns = (uint8_t)ns;
+    for (i = 0; i < ns; i++) {
+        err = channel_section_check(&cfg->s[i]);
+        if (err != CP_OK) {
+            return err;
+        }
+    }
+    /* chord e = O_e - O_(e-1), 1 <= e < N: coincident centres, a section plane containing
+     * the chord (either end) */
+    for (e = 1u; e < ns; e++) {
+        for (k = 0; k < 3u; k++) {
+            cv[e][k] = CVR(&cfg->s[e].c)[k] - CVR(&cfg->s[e - 1u].c)[k];
+        }
+        cl[e] = norm(cv[e]);
+        if (!(cl[e] > CP_R(1.0e-6) * (cfg->s[e - 1u].a + cfg->s[e - 1u].b))) {
+            return CP_ERR_COINCIDENT;
+        }
+        for (i = e - 1u; i <= e; i++) {
+            if (cp_fabs(dot(CVR(&cfg->s[i].z), cv[e])) < CHANNEL_PLANE_TOL * cl[e]) {
+                return CP_ERR_SECTION_PLANE;
+            }
+        }
+    }
+    /* node i has chords lo = max(i, 1) and hi = min(i + 1, N - 1) (the same one at the ends).
+     * Tangent M_i = d_i z_i: sign towards the next centre (last: from the previous), |d_i|
+     * = mean adjacent chord (B6). Second derivative A_i (B7) = mean of the one-sided
+     * cubic-Hermite values: on chord e from A = e - 1 to B = e, H''(0) = 6 dP - 4 M_A - 2 M_B
+     * at A, H''(1) = -(6 dP - 2 M_A - 4 M_B) at B (ends: the one value, halved twice). */
+    for (q = 0; q < 2u; q++) {
+        for (i = 0; i < ns; i++) {
+            unsigned lo = i > 0u ? i : 1u, hi = i + 1u < ns ? i + 1u : i;
+            if (q == 0u) {
+                ch->d[i] = CP_R(0.5) * (cl[lo] + cl[hi]);
+                if (!(dot(CVR(&cfg->s[i].z), cv[hi]) > CP_R(0.0))) {
+                    ch->d[i] = -ch->d[i];
+                }
+                continue;
+            }
+            for (k = 0; k < 3u; k++) {
+                ch->acc[i][k] = CP_R(0.0);
+            }
+            for (e = 0; e < 2u; e++) {
+                unsigned c = e ? hi : lo;
+                cp_real fa = c == i ? CP_R(2.0) : CP_R(4.0), sg = c == i ? CP_R(-0.5) : CP_R(0.5);
+                const cp_real *za = CVR(&cfg->s[c - 1u].z), *zb = CVR(&cfg->s[c].z);
+                for (k = 0; k < 3u; k++) {
+                    ch->acc[i][k] += sg * (CP_R(6.0) * cv[c][k] - fa * ch->d[c - 1u] * za[k] -
+                                           (CP_R(6.0) - fa) * ch->d[c] * zb[k]);
+                }
+            }
+        }
+    }
+    /* node angles (B.2 step 4) in the frame that places the sections (B8), tau = unit(M_i),
+     * unwrapped mod pi; a < b: the same curve with the axes swapped (a along y, alpha + pi/2).
+     * Node data (step 5). */
+    for (i = 0; i < ns; i++) {
+        const struct channel_section *s = &cfg->s[i];
+        const cp_real *sv = CVR(s);
+        cp_real a = s->a, b = s->b, xa[3], jx, jy, sn, cs, t;
+        r.flags = 0u;
+        for (k = 0; k < 3u; k++) {
+            r.t[k] = ch->d[i] * sv[S_Z + k];
+            xa[k] = sv[S_X + k];
+        }
+        (void)unit(r.t);
+        (void)frame(&r);
+        if (r.flags & CHANNEL_ROW_FRAME) {
+            return CP_ERR_FRAME_REF;
+        }
+        if (a < b) {
+            cross(sv + S_Z, sv + S_X, xa); /* y = z x x */
+            a = s->b;
+            b = s->a;
+        }
+        t = cp_atan2(dot(xa, r.e2), dot(xa, r.e1));
+        ch->al[i] = i > 0u ? near(t, ch->al[i - 1u]) : t;
+        kconst(s->n, kk);
+        jx = a * b * b * b * kk[1];
+        jy = a * a * a * b * kk[1];
+        cp_sincos(ch->al[i], &sn, &cs);
+        ch->y[Q_S][i] = a * b * kk[0];
+        ch->y[Q_N][i] = s->n;
+        ch->y[Q_JI][i] = jx * cs * cs + jy * sn * sn;
+        ch->y[Q_JII][i] = jx * sn * sn + jy * cs * cs;
+        ch->y[Q_J12][i] = (jy - jx) * sn * cs;
+    }
+    /* natural cubic splines, uniform knots (h = 1): y2[i-1] + 4 y2[i] + y2[i+1] =
+     * r_i = 6 (y[i+1] - 2 y[i] + y[i-1]), y2 = 0 at both ends: N - 2 <= 2 unknowns
+     * (CP_MAX_SECTIONS <= 4, cp_config.h), the Thomas solve written out: N = 3: y2_1 =
+     * r_1/4; N = 4: y2_1 = (4 r_1 - r_2)/15, y2_2 = (4 r_2 - r_1)/15 (the same strictly
+     * diagonally dominant matrix for the five laws; a few ulp). */
+    for (q = 0; q < NQ; q++) {
+        for (i = 1u; i + 1u < ns; i++) {
+            cq[i] = CP_R(6.0) * (ch->y[q][i + 1u] - CP_R(2.0) * ch->y[q][i] + ch->y[q][i - 1u]);
+        }
+        for (i = 1u; i + 1u < ns; i++) {
+            ch->y2[q][i - 1u] = ns == 4u ? (CP_R(4.0) * cq[i] - cq[3u - i]) / CP_R(15.0) : cq[i] / CP_R(4.0);
+        }
+    }
+    return CP_OK;
+}
+
+/* ---------------------------------------------------------------------------------------
+ * Wire inertia (eqs. 1-8, B2-B4): closed polygon, exact moments of each uniform segment:
+ * int x dL = l (A + B)/2, int x_i x_j dL = l (A_i A_j + B_i B_j + (A_i B_j + A_j B_i)/2)/3.
+ * Characteristic cubic lam^3 - I1 lam^2 + I2 lam - I3 = 0 in closed form: lam = I1/3 + mu,
+ * mu^3 + P mu + Q = 0, P = I2 - I1^2/3 <= 0, Q = -2 I1^3/27 + I1 I2/3 - I3,
+ * mu_k = 2 sqrt(-P/3) cos(phi - 2 pi k/3), phi = acos(3Q/(2P) sqrt(-3/P))/3.
+ * Host/test use only (the M4F image drops it: gc-sections). */
+int channel_wire_inertia(const struct channel_section *s, uint32_t m, cp_real *len,
+                         struct cp_vec3 *centroid, cp_real lam[3], struct cp_vec3 *axis3)
+{
+    const cp_real *sv = CVR(s);
+    cp_real mom[3], sec[3][3], jt[3][3], pv[2][3], ya[3], tot = CP_R(0.0), q = CP_R(2.0) / s->n;
+    cp_real i1, i2, i3, pp, qq, rr, ph, sn, cs, best = CP_R(-1.0);
+    cp_real *ax = VR(axis3), *ce = VR(centroid);
+    unsigned i, j, k;
+    uint32_t e;
+    if (m < 8u || m > 1000000u) {
+        return CP_ERR_RANGE;
+    }
+    cross(sv + S_Z, sv + S_X, ya);
+    for (i = 0; i < 3u; i++) {
+        mom[i] = CP_R(0.0);
+        for (j = 0; j < 3u; j++) {
+            sec[i][j] = CP_R(0.0);
+        }
+    }
+    for (e = 0; e <= m; e++) {
+        cp_real c, sw, x, y;
+        cp_sincos(CP_TWO_PI * (cp_real)(e % m) / (cp_real)m, &sw, &c);
+        x = c != CP_R(0.0) ? s->a * cp_exp(q * cp_log(cp_fabs(c))) : CP_R(0.0);
+        y = sw != CP_R(0.0) ? s->b * cp_exp(q * cp_log(cp_fabs(sw))) : CP_R(0.0);
+        x = c < CP_R(0.0) ? -x : x;
+        y = sw < CP_R(0.0) ? -y : y;
+        for (i = 0; i < 3u; i++) {
+            pv[e & 1u][i] = x * sv[S_X + i] + y * ya[i];
+        }
+        if (e > 0u) {
+            const cp_real *pa = pv[(e - 1u) & 1u], *pb = pv[e & 1u];
+            cp_real l, dl[3];
+            for (i = 0; i < 3u; i++) {
+                dl[i] = pb[i] - pa[i];
+            }
+            l = norm(dl);
+            tot += l;
+            for (i = 0; i < 3u; i++) {
+                mom[i] += l * CP_R(0.5) * (pa[i] + pb[i]);
+                for (j = 0; j < 3u; j++) {
+                    sec[i][j] += l * (pa[i] * pa[j] + pb[i] * pb[j] +
+                                      CP_R(0.5) * (pa[i] * pb[j] + pa[j] * pb[i])) /
+                                 CP_R(3.0);
+                }
+            }
+        }
+    }
+    for (i = 0; i < 3u; i++) {
+        mom[i] /= tot; /* centroid offset from the centre (B2: rho cancels) */
+    }
+    for (i = 0; i < 3u; i++) {
+        for (j = 0; j < 3u; j++) {
+            sec[i][j] -= tot * mom[i] * mom[j]; /* about the centroid */
+        }
+    }
+    for (i = 0; i < 3u; i++) {
+        for (j = 0; j < 3u; j++) {
+            jt[i][j] = i == j ? sec[0][0] + sec[1][1] + sec[2][2] - sec[i][i] : -sec[i][j];
+        }
+    }
+    i1 = jt[0][0] + jt[1][1] + jt[2][2];
+    i2 = jt[0][0] * jt[1][1] + jt[1][1] * jt[2][2] + jt[0][0] * jt[2][2] - jt[0][1] * jt[0][1] -
+         jt[1][2] * jt[1][2] - jt[0][2] * jt[0][2];
+    i3 = jt[0][0] * (jt[1][1] * jt[2][2] - jt[1][2] * jt[1][2]) -
+         jt[0][1] * (jt[0][1] * jt[2][2] - jt[1][2] * jt[0][2]) +
+         jt[0][2] * (jt[0][1] * jt[1][2] - jt[1][1] * jt[0][2]);
+    pp = i2 - i1 * i1 / CP_R(3.0);
+    qq = -CP_R(2.0) * i1 * i1 * i1 / CP_R(27.0) + i1 * i2 / CP_R(3.0) - i3;
+    rr = pp < CP_R(0.0) ? CP_R(1.5) * qq / pp * cp_sqrt(CP_R(-3.0) / pp) : CP_R(0.0);
+    rr = rr > CP_R(1.0) ? CP_R(1.0) : (rr < CP_R(-1.0) ? CP_R(-1.0) : rr);
+    ph = cp_atan2(cp_sqrt(CP_R(1.0) - rr * rr), rr) / CP_R(3.0);
+    pp = pp < CP_R(0.0) ? CP_R(2.0) * cp_sqrt(-pp / CP_R(3.0)) : CP_R(0.0);
+    for (k = 0; k < 3u; k++) {
+        cp_sincos(ph - CP_TWO_PI * (cp_real)k / CP_R(3.0), &sn, &cs);
+        lam[k] = i1 / CP_R(3.0) + pp * cs; /* phi in [0, pi/3]: k = 0 largest, 1 middle, 2 smallest */
+    }
+    sn = lam[0];
+    lam[0] = lam[2];
+    lam[2] = sn;
+    /* axis of lam[2]: the largest cross product of two rows of J - lam[2] I */
+    for (k = 0; k < 3u; k++) {
+        cp_real ra[3], rb[3], cx[3];
+        i = k;
+        j = (k + 1u) % 3u;
+        for (e = 0; e < 3u; e++) {
+            ra[e] = jt[i][e] - (i == e ? lam[2] : CP_R(0.0));
+            rb[e] = jt[j][e] - (j == e ? lam[2] : CP_R(0.0));
+        }
+        cross(ra, rb, cx);
+        cs = norm(cx);
+        if (cs > best) {
+            best = cs;
+            for (e = 0; e < 3u; e++) {
+                ax[e] = cx[e];
+            }
+        }
+    }
+    cs = (dot(ax, sv + S_Z) < CP_R(0.0) ? CP_R(-1.0) : CP_R(1.0)) / best;
+    for (i = 0; i < 3u; i++) {
+        ax[i] *= cs;
+        ce[i] = sv[S_C + i] + mom[i];
+    }
+    *len = tot;
+    return CP_OK;
+}
+
+/* ---------------------------------------------------------------------------------------
+ * Iterator. Coordinate 0 is u in [lo, hi] = [0, N-1], 1 is w in [u0, u1]. Point k of the
+ * raster (steps, link): block j = k / (steps + 1 + link) holds line/ring j (steps + 1
+ * points, zigzag) then the link after it (link points). The "along" coordinate (LINES: u,
+ * CIRCLES: w) runs over its range on a line/ring; the "across" one steps from line to line
+ * and, on a link, moves evenly from line j to line j + 1 where line j ends. Fractions
+ * num/den of a range (exact for the integer u spans: (hi - lo) num is an integer, one
+ * rounding in the division). */
+static CP_NOINLINE cp_real frac(const struct channel_path *cp, unsigned c, uint32_t num, uint32_t den)
+{
+    return den == 0u ? cp->lo[c] : cp->lo[c] + (cp->hi[c] - cp->lo[c]) * (cp_real)num / (cp_real)den;
+}
+
+/* Point k: output position and normal, t, line, index in pt; surface point s; *kind = 1
+ * on a link; through the row cache (key: u). Checks the row and the point: CP_OK,
+ * CP_ERR_FRAME_REF, CP_ERR_AREA_LAW, CP_ERR_NUMERIC (non-finite), CP_ERR_FOLD (g <= 0). */
+static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struct cp_vec3 *s,
+              unsigned *kind)
+{
+    cp_real x[2], g, *p = VR(&pt->p);
+    const cp_real *n = CVR(&pt->n), *sv = CVR(s);
+    uint32_t st = cp->steps, den = st, j = k / (st + 1u + cp->link), i = k % (st + 1u + cp->link);
+    uint32_t nm = (uint32_t)cp->n - 1u;
+    unsigned al = cp->mode, ac = al ^ 1u, c; /* TOOLPATH_LINES = 0: along u */
+    *kind = i > st;
+    pt->line = (int16_t)j;
+    if (*kind != 0u) {
+        i -= st;
+        den = (uint32_t)cp->link + 1u;
+        x[al] = (j & 1u) ? cp->lo[al] : cp->hi[al]; /* where line/ring j ends */
+        pt->line = -1;
+    } else {
+        i = (j & 1u) ? st - i : i; /* zigzag */
+        x[al] = frac(cp, al, i, den);
+    }
+    x[ac] = frac(cp, ac, j * den + (*kind ? i : 0u), nm * den);
+    pt->index = (uint16_t)i;
+    pt->t = x[0];
+    if (cp->row.u != x[0]) {
+        channel_row(&cp->ch, x[0], &cp->row);
+    }
+    channel_point(&cp->row, x[1], s, &pt->n, &g);
+    for (c = 0; c < 3u; c++) {
+        p[c] = sv[c] - cp->tool_r * n[c]; /* ball centre inside the duct (0 with OUT_SURFACE) */
+    }
+    if (cp->output == TOOLPATH_OUT_TIP) {
+        pt->p.z -= cp->tool_r;
+    }
+    if (cp->row.flags & CHANNEL_ROW_FRAME) {
+        return CP_ERR_FRAME_REF;
+    }
+    if (cp->row.flags & CHANNEL_ROW_BAD_LAW) {
+        return CP_ERR_AREA_LAW;
+    }
+    if (!cp_isfinite(p[0] + p[1] + p[2] + n[0] + n[1] + n[2])) {
+        return CP_ERR_NUMERIC;
+    }
+    return g > CP_R(0.0) ? CP_OK : CP_ERR_FOLD;
+}
+
+/* Walk the whole raster with seg[0] segments per line/ring and seg[1] per link, doubled
+ * (steps = 2 seg[0], link = 2 seg[1] - 1: the emitted points are the even k, with exactly
+ * the (u, w) the stream computes; every line/ring and link starts at an even k): every
+ * point's checks (at), the tool-centre path against the surface path (no fold back);
+ * sag[q] = max distance of an odd point from the chord of its two neighbours (the
+ * emitted segment) over the segments of lines (q = 0) and links (q = 1). Counts Q < 2P
+ * clamps. Work: the doubled raster's points. */
+static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_real *sag)
+{
+    struct toolpath_pt pt;
+    struct cp_vec3 sv;
+    cp_real sp[3], op[2][3], dm[3], dc[3], cx[3];
+    const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
+    uint32_t k, cnt;
+    unsigned c, kind = 0u;
+    cp->steps = (uint16_t)(2u * seg[0]);
+    cp->link = (uint16_t)(2u * seg[1] - 1u);
+    cnt = (uint32_t)cp->n * (2u * seg[0] + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
+    sag[0] = sag[1] = CP_R(0.0);
+    for (k = 0; k < cnt; k++) {
+        unsigned prev = kind;
+        int err = at(cp, k, &pt, &sv, &kind);
+        if (err != CP_OK) {
+            return err;
+        }
+        if ((cp->row.flags & CHANNEL_ROW_CLAMP) && cp->ch.clamps < 0xFFFFu) {
+            cp->ch.clamps++;
+        }
+        if (k > 0u && cp->output != TOOLPATH_OUT_SURFACE) {
+            for (c = 0; c < 3u; c++) {
+                dm[c] = s[c] - sp[c];                /* surface step */
+                dc[c] = p[c] - op[(k - 1u) & 1u][c]; /* output step */
+            }
+            if (!(dot(dm, dc) > CP_R(0.0))) {
+                return CP_ERR_TOOL;
+            }
+        }
+        if (k >= 2u && (k & 1u) == 0u) {
+            /* distance of the odd point (kind prev) from the chord line (not from the chord's
+             * midpoint: |cos w|^(2/n) spaces the points very unevenly near the section axes,
+             * which is no deviation from the chord) */
+            cp_real d, lc;
+            for (c = 0; c < 3u; c++) {
+                dm[c] = op[1][c] - op[0][c];
+                dc[c] = p[c] - op[0][c];
+            }
+            cross(dm, dc, cx);
+            lc = norm(dc);
+            d = lc > CP_R(0.0) ? norm(cx) / lc : norm(dm);
+            sag[prev] = d > sag[prev] ? d : sag[prev];
+        }
+        for (c = 0; c < 3u; c++) {
+            sp[c] = s[c];
+            op[k & 1u][c] = p[c];
+        }
+    }
+    return CP_OK;
+}
+
+int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
+                      const struct toolpath_cfg *rs)
+{
+    uint32_t seg[2], fix[2], it;
+    cp_real sag[2], tol[2];
+    unsigned q;
+    int err;
+    cp->count = 0u;
+    cp->k = 0u;
+    if (rs == NULL || rs->mode > TOOLPATH_CIRCLES || rs->output > TOOLPATH_OUT_TIP ||
+        (rs->output == TOOLPATH_OUT_SURFACE && rs->tool_r != CP_R(0.0))) {
+        return CP_ERR_INVAL;
+    }
+    /* x * 0 is NaN exactly when x is not finite (no overflow of a sum) */
+    if (!cp_isfinite(rs->u0 * CP_R(0.0) + rs->u1 * CP_R(0.0) + rs->tol * CP_R(0.0) +
+                     rs->tool_r * CP_R(0.0))) {
+        return CP_ERR_NONFINITE;
+    }
+    if (rs->n == 0u || cp_fabs(rs->u0) > CP_PI || cp_fabs(rs->u1) > CP_PI ||
+        (rs->u0 == rs->u1 && rs->n > 1u) ||
+        (rs->tol != CP_R(0.0) && (rs->tol < CP_R(1e-5) || rs->tol > CP_R(10.0))) ||
+        (rs->steps == 0u && rs->tol == CP_R(0.0)) ||
+        (rs->link != TOOLPATH_LINK_AUTO && rs->link > CP_MAX_LINK)) {
+        return CP_ERR_RANGE;
+    }
+    if (rs->n > CP_MAX_LINES || rs->steps > CP_MAX_STEPS) {
+        return CP_ERR_TOO_MANY;
+    }
+    if (rs->tool_r < CP_R(0.0) || rs->tool_r > CHANNEL_COORD_MAX) {
+        return CP_ERR_TOOL;
+    }
+    err = channel_init(&cp->ch, g);
+    if (err != CP_OK) {
+        return err;
+    }
+    cp->output = rs->output;
+    cp->tool_r = rs->tool_r;
+    cp->row.u = CP_R(-1.0);
+    cp->lo[0] = CP_R(0.0);
+    cp->hi[0] = (cp_real)(cp->ch.ns - 1u);
+    /* the evaluation grid: whole rings (-pi..pi, CHANNEL_GRID_W samples) at CHANNEL_GRID_U
+     * rows per segment, walked like a CIRCLES raster (fold, laws, frame, tool) */
+    cp->mode = TOOLPATH_CIRCLES;
+    cp->n = (uint16_t)((cp->ch.ns - 1u) * CHANNEL_GRID_U + 1u);
+    cp->lo[1] = -CP_PI;
+    cp->hi[1] = CP_PI;
+    seg[0] = CHANNEL_GRID_W / 2u;
+    seg[1] = 1u;
+    err = walk(cp, seg, sag);
+    if (err != CP_OK) {
+        return err;
+    }
+    cp->mode = rs->mode;
+    cp->n = rs->n;
+    cp->lo[1] = rs->u0;
+    cp->hi[1] = rs->u1;
+    /* segments per line (q = 0) and per link (q = 1): given (fix > 0), else for the
+     * tolerance: a pilot walk (32, 1), the estimate from the h^2 law of the sagitta (rounded
+     * up, aimed at SAG_MARGIN tol), then verified; up to four corrections, each at least 1/8
+     * larger. Lines 8..CP_MAX_STEPS, links 1..CP_MAX_LINK + 1 (tolerance 1 um when tol = 0). */
+    fix[0] = rs->steps;
+    fix[1] = rs->n == 1u ? 1u : (rs->link != TOOLPATH_LINK_AUTO ? rs->link + 1u : 0u);
+    tol[0] = rs->tol;
+    tol[1] = rs->tol > CP_R(0.0) ? rs->tol : CP_R(0.001);
+    seg[0] = fix[0] ? fix[0] : 32u;
+    seg[1] = fix[1] ? fix[1] : 1u;
+    for (it = 0;; it++) {
+        unsigned done = 1u;
+        err = walk(cp, seg, sag);
+        if (err != CP_OK) {
+            return err;
+        }
+        for (q = 0; q < 2u; q++) {
+            uint32_t hi = q ? CP_MAX_LINK + 1u : CP_MAX_STEPS, sg = seg[q], want;
+            cp_real f = (cp_real)sg * cp_sqrt(sag[q] / (SAG_MARGIN * tol[q])) * CP_R(1.05);
+            if (fix[q] || (it > 0u && sag[q] <= tol[q])) {
+                continue;
+            }
+            if (it >= 4u || !(f <= (cp_real)hi)) {
+                return CP_ERR_TOL;
+            }
+            want = (uint32_t)cp_ceil(f);
+            want = want < (q ? 1u : 8u) ? (q ? 1u : 8u) : want;
+            want = it > 0u && want < sg + 1u + sg / 8u ? sg + 1u + sg / 8u : want;
+            if (want > hi) {
+                return CP_ERR_TOL;
+            }
+            seg[q] = want;
+            done = 0u;
+        }
+        if (done) {
+            break;
+        }
+    }
+    cp->steps = (uint16_t)seg[0];
+    cp->link = (uint16_t)(seg[1] - 1u);
+    cp->count = (uint32_t)cp->n * ((uint32_t)cp->steps + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
+    return CP_OK;
+}
+
+uint32_t channel_path_count(const struct channel_path *cp)
+{
+    return cp->count;
+}
+
+int channel_path_seek(struct channel_path *cp, uint32_t k)
+{
+    if (k > cp->count) {
+        return CP_ERR_RANGE;
+    }
+    cp->k = k;
+    return CP_OK;
+}
+
+int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt)
+{
+    struct cp_vec3 s;
+    unsigned kind;
+    int err;
+    if (cp->k >= cp->count) {
+        return CP_ERR_DONE;
+    }
+    err = at(cp, cp->k, pt, &s, &kind);
+    if (err == CP_OK) {
+        cp->k++;
+    }
+    return err;
+}
+
+#if CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct channel_path) <= 800u, channel_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct channel_cfg) <= 640u, channel_cfg_fits_budget);
+#else
+CP_STATIC_ASSERT(sizeof(struct channel_path) <= 400u, channel_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct channel_cfg) <= 320u, channel_cfg_fits_budget);
+#endif

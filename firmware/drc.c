@@ -1,0 +1,1356 @@
+/* drc.c - DRC-EXP thickening of discretely represented curves and its toolpaths (drc.h).
+ * SPDX-License-Identifier: MIT
+ *
+ * MATH-seeds-2-3-4.md part A.2. Notation: a segment A -> B of chord c, direction d;
+ * its end angles a (tangent at A to the chord) and b (chord to the tangent at B),
+ * signed with the turn; E1(q) = (e^q - 1)/q, E2(q) = (e^q - 1 - q)/q^2,
+ * r(q) = (E1 - E2)/E2 (increasing, r(-q) = 1/r(q), r(0) = 1).
+ *
+ * Layout for flash (drc.h, "Footprint"): the planar core (validation, tangent
+ * assignment, planar insertion) and the iterator come first and are all the stream
+ * references; the 3D extension (adjoining-plane normals, twist, A3 tilt, the twisted
+ * complex model) and the A.4 measures follow, reached only from the library entry
+ * points (drc_tangents, drc_insert, drc_thicken, drc_run, drc_measure), so
+ * --gc-sections drops them from the firmware image.
+ */
+#include "drc.h"
+#include "cp_math.h"
+
+#define ONE CP_R(1.0)
+#define TWO CP_R(2.0)
+#define HALF CP_R(0.5)
+#define ZERO CP_R(0.0)
+#define DRC_K_INF CP_R(1.0e30) /* "unbounded" curvature of the one-zero-angle limit */
+
+/* ---- vectors ---- */
+static cp_real dot3(const struct cp_vec3 *a, const struct cp_vec3 *b)
+{
+    return a->x * b->x + a->y * b->y + a->z * b->z;
+}
+
+static void sub3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
+{
+    o->x = a->x - b->x;
+    o->y = a->y - b->y;
+    o->z = a->z - b->z;
+}
+
+static void cross3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
+{
+    cp_real x = a->y * b->z - a->z * b->y, y = a->z * b->x - a->x * b->z;
+    o->z = a->x * b->y - a->y * b->x;
+    o->x = x;
+    o->y = y;
+}
+
+/* o = sa a + sb b */
+static void comb3(cp_real sa, const struct cp_vec3 *a, cp_real sb, const struct cp_vec3 *b,
+                  struct cp_vec3 *o)
+{
+    o->x = sa * a->x + sb * b->x;
+    o->y = sa * a->y + sb * b->y;
+    o->z = sa * a->z + sb * b->z;
+}
+
+static cp_real norm3(const struct cp_vec3 *a)
+{
+    return cp_sqrt(dot3(a, a));
+}
+
+/* ---- the exponential segment model ---- */
+
+/* 1/k! for k = 1 .. DRC_SERIES + 3 (index k - 1). */
+static const cp_real inv_fact[20] = {
+    CP_R(1.0),
+    CP_R(0.5),
+    CP_R(1.66666666666666666667e-1),
+    CP_R(4.16666666666666666667e-2),
+    CP_R(8.33333333333333333333e-3),
+    CP_R(1.38888888888888888889e-3),
+    CP_R(1.98412698412698412698e-4),
+    CP_R(2.48015873015873015873e-5),
+    CP_R(2.75573192239858906526e-6),
+    CP_R(2.75573192239858906526e-7),
+    CP_R(2.50521083854417187751e-8),
+    CP_R(2.08767569878680989792e-9),
+    CP_R(1.60590438368216145994e-10),
+    CP_R(1.14707455977297247139e-11),
+    CP_R(7.64716373181981647590e-13),
+    CP_R(4.77947733238738529744e-14),
+    CP_R(2.81145725434552076320e-15),
+    CP_R(1.56192069685862264622e-16),
+    CP_R(8.22063524662432971696e-18),
+    CP_R(4.11031762331216485848e-19),
+};
+
+/* Series terms: E1 = sum_{k=0}^{S} q^k/(k+1)!, E2 = sum q^k/(k+2)! on |q| <= 1.
+ * Truncation <= 2/(S+3)! relative to E2 >= e^-1: float S = 9 (2/12! = 4e-9 < 2^-24),
+ * double S = 16 (2/19! = 1.6e-17 < 2^-53). Outside, the closed forms lose at most
+ * a factor 1/(1 - 2/e) ~ 3.8 (E2 = (E1 - 1)/q at q = 1) to cancellation. */
+#if CP_REAL_DOUBLE
+#define DRC_SERIES 16
+#else
+#define DRC_SERIES 9
+#endif
+
+/* E1, E2 and e^q of real q. */
+static void e12(cp_real q, cp_real *e1, cp_real *e2, cp_real *eq)
+{
+    if (cp_fabs(q) <= ONE) {
+        cp_real s1 = ZERO, s2 = ZERO;
+        int k;
+        for (k = DRC_SERIES; k >= 0; k--) {
+            s1 = s1 * q + inv_fact[k];
+            s2 = s2 * q + inv_fact[k + 1];
+        }
+        *e1 = s1;
+        *e2 = s2;
+        *eq = ONE + q * s1;
+        return;
+    }
+    *eq = cp_exp(q);
+    *e1 = (*eq - ONE) / q;
+    *e2 = (*e1 - ONE) / q;
+}
+
+/* r^-1(rho) for rho > 0: q in [-DRC_Q_MAX, DRC_Q_MAX] with r(q) = rho (clamped at the
+ * ends), by DRC_Q_BISECT bisection steps (r is increasing; r(q) < rho <=>
+ * E1 - E2 < rho E2 since E2 > 0). Error: 2 DRC_Q_MAX 2^-DRC_Q_BISECT. */
+static cp_real rinv(cp_real rho)
+{
+    cp_real lo = -DRC_Q_MAX, hi = DRC_Q_MAX, e1, e2, eq, m;
+    int i;
+    for (i = 0; i < DRC_Q_BISECT; i++) {
+        m = HALF * (lo + hi);
+        e12(m, &e1, &e2, &eq);
+        if (e1 - e2 < rho * e2) {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    return HALF * (lo + hi);
+}
+
+static cp_real rq(cp_real q)
+{
+    cp_real e1, e2, eq;
+    e12(q, &e1, &e2, &eq);
+    return (e1 - e2) / e2;
+}
+
+static cp_real sgn_inf(cp_real x)
+{
+    return x == ZERO ? ZERO : (x > ZERO ? DRC_K_INF : -DRC_K_INF);
+}
+
+/* End curvatures ka, kb (1/mm, signed with the turn) and q of the segment model with
+ * end angles a, b on a chord of length len (A.2 step 1). */
+static CP_NOINLINE void seg_k(cp_real a, cp_real b, cp_real len, cp_real *ka, cp_real *kb,
+                              cp_real *q)
+{
+    cp_real th = HALF * cp_fabs(a + b), sn, cs, lt;
+    cp_sincos(th, &sn, &cs);
+    /* L~ = L (th/2) / sin(th/2): arc length of the circle of turning th */
+    lt = th > CP_R(1e-12) ? len * th / sn : len;
+    *q = ZERO;
+    if (a * b > ZERO) {
+        cp_real e1, e2, eq;
+        *q = rinv(b / a);
+        e12(*q, &e1, &e2, &eq);
+        *ka = a / (e2 * lt);
+        *kb = *ka * eq;
+    } else if ((a == ZERO) != (b == ZERO)) {
+        /* exactly one zero end angle (next to a collinear run): the limit a -> 0 of the
+         * convex model, curvature 0 at that end and unbounded (k_B ~ b q / L~, q -> inf)
+         * at the other, so G2 there is reachable only as that angle -> 0: the bisection
+         * ends with the tangent on the chord (the "end value" of A.2; line_arc: an exact
+         * curvature step at the join, no inflection) */
+        *ka = sgn_inf(a);
+        *kb = sgn_inf(b);
+    } else {
+        *ka = TWO * (TWO * a - b) / lt;
+        *kb = TWO * (TWO * b - a) / lt;
+    }
+}
+
+/* ---- steps 0 and 1 ---- */
+
+int drc_size(uint32_t n, uint32_t passes, uint32_t *need)
+{
+    *need = 0;
+    if (n < 3u) {
+        return CP_ERR_TOO_FEW;
+    }
+    if (passes > CP_MAX_PASSES || n > 0x7FFFFFu) {
+        return CP_ERR_TOO_MANY;
+    }
+    *need = (n - 1u) * ((uint32_t)1u << passes) + 1u;
+    return CP_OK;
+}
+
+/* Scratch of step 1 (the caller's tangent array holds the normals meanwhile). */
+struct drc_scratch {
+    cp_real phi[CP_MAX_DRC_POINTS]; /* signed turning at interior vertices (0 at the ends) */
+    cp_real len[CP_MAX_DRC_POINTS]; /* chord lengths */
+    cp_real tp[CP_MAX_DRC_POINTS];  /* tangent parameters t_j */
+    cp_real tau[CP_MAX_DRC_POINTS]; /* AP torsion of chords 1..n-3 (3D only) */
+    cp_real a0, b1;                 /* end angles: a of segment 0, b of segment n - 2 */
+};
+
+/* Angles of segment i from the tangent parameters: a = t_i phi_i (a0 at i = 0),
+ * b = (1 - t_{i+1}) phi_{i+1} (b1 at the last segment). */
+static cp_real seg_a(const struct drc_scratch *w, uint32_t i)
+{
+    return i == 0u ? w->a0 : w->tp[i] * w->phi[i];
+}
+
+static cp_real seg_b(const struct drc_scratch *w, uint32_t i, uint32_t n)
+{
+    return i + 2u == n ? w->b1 : (ONE - w->tp[i + 1u]) * w->phi[i + 1u];
+}
+
+/* Validation and step 0 (A.3), in the order: count, per coordinate non-finite or range,
+ * (planar != 0) off the plane, coincident chord, turning >= 90 deg. Fills len and the planar signed
+ * turning phi_j = atan2((d_{j-1} x d_j).z, d_{j-1}.d_j) (0 when |cross| <= 1e-6 of the
+ * chords, i.e. < 0.06 mdeg: collinear; the 3D path overwrites phi). */
+static CP_NOINLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n, int planar,
+                               struct drc_scratch *w)
+{
+    struct cp_vec3 d0, d1, c;
+    cp_real lo[3], hi[3], dd = ZERO;
+    uint32_t i, k;
+    if (n < 3u) {
+        return CP_ERR_TOO_FEW;
+    }
+    if (n > CP_MAX_DRC_POINTS) {
+        return CP_ERR_TOO_MANY;
+    }
+    for (i = 0; i < n; i++) {
+        const struct cp_vec3 *q = &p[i * ps];
+        const cp_real v[3] = {q->x, q->y, q->z};
+        for (k = 0; k < 3u; k++) {
+            if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
+                return cp_isfinite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
+            }
+            lo[k] = (i == 0u || v[k] < lo[k]) ? v[k] : lo[k];
+            hi[k] = (i == 0u || v[k] > hi[k]) ? v[k] : hi[k];
+        }
+        if (planar && v[2] != ZERO) {
+            return CP_ERR_OFF_PLANE;
+        }
+    }
+    for (k = 0; k < 3u; k++) {
+        dd += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    dd = cp_sqrt(dd) * DRC_COINCIDENT_REL;
+    w->phi[0] = ZERO;
+    w->phi[n - 1u] = ZERO;
+    for (i = 0; i + 1u < n; i++) {
+        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        w->len[i] = norm3(&d1);
+        if (!(w->len[i] > dd)) {
+            return CP_ERR_COINCIDENT;
+        }
+        if (i > 0u) {
+            cp_real co = dot3(&d0, &d1);
+            if (!(co > ZERO)) {
+                return CP_ERR_TURN;
+            }
+            cross3(&d0, &d1, &c);
+            w->phi[i] = cp_fabs(c.z) > CP_R(1e-6) * w->len[i - 1u] * w->len[i]
+                            ? cp_atan2(c.z, co) : ZERO;
+        }
+        d0 = d1;
+    }
+    return CP_OK;
+}
+
+/* G2 residual of vertex j at tangent parameter x (A.2 step 1), times sign(phi_j). */
+static CP_NOINLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint32_t n, cp_real x)
+{
+    cp_real ka, kb, kl, kr, q, ph = w->phi[j];
+    seg_k(x * ph, seg_b(w, j, n), w->len[j], &ka, &kb, &q);
+    seg_k(seg_a(w, j - 1u), (ONE - x) * ph, w->len[j - 1u], &kl, &kr, &q);
+    return ph > ZERO ? ka - kr : kr - ka;
+}
+
+/* Step 1 on the turning angles: tangent parameters tp and end angles a0, b1.
+ * Gauss-Seidel: DRC_SWEEPS sweeps of (ends, then each vertex by DRC_T_BISECT
+ * bisection steps). The residual is increasing in t_j (a larger a_j raises the
+ * curvature at the start of segment j and lowers it at the end of j - 1); without
+ * a sign change the bisection ends at 0 or 1 (G2 given up, tangent on a chord).
+ * Error of t_j: 2^-DRC_T_BISECT. The sweeps converge geometrically (measured: G2
+ * residual <= 1e-14 relative after 40 sweeps in double on every test set).
+ * End angles: N = 3 the circle through the three points (chord angle asin(L k / 2));
+ * N >= 4 the neighbour segment's q scaled by the length ratio (<= 1). */
+static CP_NOINLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
+                              struct drc_scratch *w)
+{
+    cp_real ka, kb, q, x, k;
+    uint32_t i, s, e;
+    w->a0 = ZERO;
+    w->b1 = ZERO;
+    for (i = 0; i < n; i++) {
+        w->tp[i] = HALF;
+    }
+    if (n == 3u) {
+        struct cp_vec3 ch;
+        sub3(&p[2u * ps], &p[0], &ch);
+        cp_sincos(w->phi[1], &x, &q);
+        k = x / norm3(&ch); /* half the signed curvature of the circle */
+        x = w->len[0] * k;
+        w->a0 = cp_atan2(x, cp_sqrt(ONE - x * x));
+        x = w->len[1] * k;
+        w->b1 = cp_atan2(x, cp_sqrt(ONE - x * x));
+    }
+    for (s = 0; s < DRC_SWEEPS; s++) {
+        for (e = 0; n >= 4u && e < 2u; e++) {
+            uint32_t j = e ? n - 3u : 1u;
+            cp_real lr = w->len[e ? n - 2u : 0u] / w->len[j];
+            seg_k(seg_a(w, j), seg_b(w, j, n), w->len[j], &ka, &kb, &q);
+            x = rq(q * (lr < ONE ? lr : ONE));
+            if (e) {
+                w->b1 = w->tp[n - 2u] * w->phi[n - 2u] * x;
+            } else {
+                w->a0 = (ONE - w->tp[1]) * w->phi[1] / x;
+            }
+        }
+        for (i = 1; i + 1u < n; i++) {
+            cp_real lo = ZERO, hi = ONE, m;
+            uint32_t b;
+            if (w->phi[i] == ZERO) {
+                continue;
+            }
+            for (b = 0; b < DRC_T_BISECT; b++) {
+                m = HALF * (lo + hi);
+                if (g2_res(w, i, n, m) < ZERO) {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            w->tp[i] = HALF * (lo + hi);
+        }
+    }
+}
+
+/* Angle of the tangent at point i from chord c(i) = i (n - 2 at the last point), signed
+ * about the normal: a0, t_i phi_i, -b1. */
+static cp_real tan_angle(const struct drc_scratch *w, uint32_t i, uint32_t n)
+{
+    return i == 0u ? w->a0 : (i + 1u == n ? -w->b1 : w->tp[i] * w->phi[i]);
+}
+
+/* Steps 0 and 1 of planar data (z == 0 required: CP_ERR_OFF_PLANE): the stream's path
+ * and drc_tangents' for planar input, so both give the same bits. The tangent at point i
+ * is the unit chord c(i) rotated by -angle about +z. */
+static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
+                                       unsigned ts, uint32_t n)
+{
+    struct drc_scratch w;
+    uint32_t i;
+    int err = analyse(p, ps, n, 1, &w);
+    if (err != CP_OK) {
+        return err;
+    }
+    solve(p, ps, n, &w);
+    for (i = 0; i < n; i++) {
+        uint32_t c = i + 1u < n ? i : n - 2u;
+        struct cp_vec3 d, *o = &t[i * ts];
+        cp_real sn, cs, l = w.len[c];
+        cp_sincos(-tan_angle(&w, i, n), &sn, &cs);
+        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
+        d.x /= l;
+        d.y /= l;
+        o->x = cs * d.x - sn * d.y;
+        o->y = cs * d.y + sn * d.x;
+        o->z = ZERO;
+    }
+    return CP_OK;
+}
+
+/* ---- step 2, planar ---- */
+
+/* Planar insertion (A.2 step 2, real z): signed angles about +z. */
+static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_pt *b,
+                                      struct drc_pt *m)
+{
+    cp_real dx = b->p.x - a->p.x, dy = b->p.y - a->p.y, c = cp_sqrt(dx * dx + dy * dy);
+    cp_real tha, thb, d1, gm, sn, cs, e1, e2, eq, r;
+    dx /= c;
+    dy /= c;
+    tha = cp_atan2(dx * a->t.y - dy * a->t.x, dx * a->t.x + dy * a->t.y);
+    thb = cp_atan2(dx * b->t.y - dy * b->t.x, dx * b->t.x + dy * b->t.y);
+    /* inflection or a zero end angle: linear curvature */
+    d1 = CP_R(0.25) * (tha - thb);
+    gm = CP_R(-0.25) * (tha + thb);
+    if (tha * thb < ZERO) {
+        /* convex (a = -tha, b = thb of one sign): k = (C/L) e^{qu}, q = r^-1(b/a);
+         * children: c1 = C/2, deviations D1 = G_A + c1 E2(q/2), G_M = G_A + c1 E1(q/2) */
+        cp_real q = rinv(-thb / tha), cc;
+        e12(q, &e1, &e2, &eq);
+        cc = -HALF * tha / e2; /* signed C/2 */
+        e12(HALF * q, &e1, &e2, &eq);
+        d1 = tha + cc * e2;
+        gm = tha + cc * e1;
+    }
+    /* isosceles apex: M = A + c/(2 cos D1) rot(d, D1) */
+    cp_sincos(d1, &sn, &cs);
+    r = HALF * c / cs;
+    m->p.x = a->p.x + r * (cs * dx - sn * dy);
+    m->p.y = a->p.y + r * (sn * dx + cs * dy);
+    m->p.z = ZERO;
+    cp_sincos(gm, &sn, &cs);
+    m->t.x = cs * dx - sn * dy;
+    m->t.y = sn * dx + cs * dy;
+    m->t.z = ZERO;
+}
+
+/* ---- the 3D extension and the library entry points (not referenced by the stream) ---- */
+
+/* 3D step 0: oriented adjoining-plane normals n_j = unit(d_{j-1} x d_j) into t,
+ * n_j . n_{j-1} >= 0 (a collinear vertex inherits the previous normal, filled back at
+ * the first one; all collinear: +z), turning phi_j about them, AP-dihedral torsion
+ * tau = angle / L of chords 1..n-3 (A2) and the twist rejection |angle| >= 45 deg. */
+static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
+                                unsigned ts, uint32_t n, struct drc_scratch *w)
+{
+    struct cp_vec3 d0, d1, c;
+    uint32_t i, k, have = 0;
+    for (i = 0; i < n; i++) {
+        t[i * ts].x = ZERO;
+        t[i * ts].y = ZERO;
+        t[i * ts].z = ONE;
+        w->tau[i] = ZERO;
+    }
+    for (i = 1; i + 1u < n; i++) {
+        cp_real cl, co;
+        sub3(&p[i * ps], &p[(i - 1u) * ps], &d0);
+        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        co = dot3(&d0, &d1);
+        cross3(&d0, &d1, &c);
+        cl = norm3(&c);
+        w->phi[i] = ZERO;
+        if (cl > CP_R(1e-6) * w->len[i - 1u] * w->len[i]) {
+            cp_real sg = ONE;
+            comb3(ONE / cl, &c, ZERO, &c, &c);
+            if (have && dot3(&c, &t[(i - 1u) * ts]) < ZERO) {
+                comb3(-ONE, &c, ZERO, &c, &c);
+                sg = -ONE;
+            }
+            for (k = have ? i : 0u; k <= i; k++) {
+                t[k * ts] = c;
+            }
+            have = 1;
+            /* (d_{j-1} x d_j) . n_j = sg cl */
+            w->phi[i] = cp_atan2(sg * cl, co);
+        } else if (have) {
+            t[i * ts] = t[(i - 1u) * ts];
+        }
+    }
+    t[(n - 1u) * ts] = t[(n - 2u) * ts];
+    for (i = 1; i + 2u < n; i++) {
+        cp_real ang;
+        cross3(&t[i * ts], &t[(i + 1u) * ts], &c);
+        sub3(&p[(i + 1u) * ps], &p[i * ps], &d0);
+        ang = cp_atan2(dot3(&c, &d0) / w->len[i], dot3(&t[i * ts], &t[(i + 1u) * ts]));
+        if (!(cp_fabs(ang) < CP_R(0.78539816339744830962))) {
+            return CP_ERR_TWIST;
+        }
+        w->tau[i] = ang / w->len[i];
+    }
+    return CP_OK;
+}
+
+/* The A3 tilt chi_i of the tangent out of the adjoining plane (N >= 4; 0 for N = 3):
+ * ends ks tau L L / 3, interior -ks tau_b L L / 6 (ks the signed 3-point curvature,
+ * tau_b the mean torsion of the two chords, the one-sided value next to the ends). */
+static CP_NOINLINE void tilt_3d(const struct cp_vec3 *p, unsigned ps, uint32_t n,
+                                const struct drc_scratch *w, cp_real *chi)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        uint32_t v = i == 0u ? 1u : (i + 1u == n ? n - 2u : i);
+        struct cp_vec3 ch2;
+        cp_real sn, cs, ks, tb;
+        chi[i] = ZERO;
+        if (n < 4u) {
+            continue;
+        }
+        sub3(&p[(v + 1u) * ps], &p[(v - 1u) * ps], &ch2);
+        cp_sincos(w->phi[v], &sn, &cs);
+        ks = TWO * sn / norm3(&ch2); /* signed 3-point curvature */
+        if (i == 0u) {
+            chi[i] = ks * w->tau[1] * w->len[0] * w->len[1] / CP_R(3.0);
+        } else if (i + 1u == n) {
+            chi[i] = ks * w->tau[n - 3u] * w->len[n - 2u] * w->len[n - 3u] / CP_R(3.0);
+        } else {
+            tb = v == 1u ? w->tau[1]
+                         : (v + 2u == n ? w->tau[n - 3u] : HALF * (w->tau[v - 1u] + w->tau[v]));
+            chi[i] = -ks * tb * w->len[v - 1u] * w->len[v] / CP_R(6.0);
+        }
+    }
+}
+
+int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsigned ts,
+                 uint32_t n)
+{
+    struct drc_scratch w;
+    cp_real chi[CP_MAX_DRC_POINTS];
+    uint32_t i;
+    int err = analyse(p, ps, n, 0, &w);
+    if (err != CP_OK) {
+        return err;
+    }
+    if (analyse(p, ps, n, 1, &w) == CP_OK) {
+        return tangents_planar(p, ps, t, ts, n);
+    }
+    err = shape_3d(p, ps, t, ts, n, &w);
+    if (err != CP_OK) {
+        return err;
+    }
+    solve(p, ps, n, &w);
+    tilt_3d(p, ps, n, &w, chi);
+    /* chord c(i) rotated about the normal n_i (in t) by -angle, tilted by chi_i */
+    for (i = 0; i < n; i++) {
+        uint32_t c = i + 1u < n ? i : n - 2u;
+        struct cp_vec3 d, nd, nrm = t[i * ts];
+        cp_real sn, cs;
+        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
+        comb3(ONE / norm3(&d), &d, ZERO, &d, &d);
+        cross3(&nrm, &d, &nd);
+        cp_sincos(-tan_angle(&w, i, n), &sn, &cs);
+        comb3(cs, &d, sn, &nd, &t[i * ts]);
+        cp_sincos(chi[i], &sn, &cs);
+        comb3(cs, &t[i * ts], sn, &nrm, &t[i * ts]);
+    }
+    return CP_OK;
+}
+
+int drc_is_planar(const struct drc_pt *buf, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        if (buf[i].p.z != ZERO || buf[i].t.z != ZERO) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* complex numbers of the twisted model */
+struct cx {
+    cp_real re, im;
+};
+
+static struct cx cmul(struct cx a, struct cx b)
+{
+    struct cx r;
+    r.re = a.re * b.re - a.im * b.im;
+    r.im = a.re * b.im + a.im * b.re;
+    return r;
+}
+
+static struct cx cdiv(struct cx a, struct cx b)
+{
+    cp_real d = b.re * b.re + b.im * b.im;
+    struct cx r;
+    r.re = (a.re * b.re + a.im * b.im) / d;
+    r.im = (a.im * b.re - a.re * b.im) / d;
+    return r;
+}
+
+/* e[0..3] = E1, E2, E1', E2' of complex z: E1' = (e^z - E1)/z,
+ * E2' = (E1 - 2 E2)/z; series on |z| <= 1 (same truncation as e12). */
+static void ce12(struct cx z, struct cx e[4])
+{
+    int k, j;
+    if (z.re * z.re + z.im * z.im <= ONE) {
+        for (j = 0; j < 4; j++) {
+            e[j].re = ZERO;
+            e[j].im = ZERO;
+        }
+        for (k = DRC_SERIES; k >= 0; k--) {
+            e[0] = cmul(e[0], z);
+            e[0].re += inv_fact[k];
+            e[1] = cmul(e[1], z);
+            e[1].re += inv_fact[k + 1];
+        }
+        /* E1' = sum (k+1) z^k/(k+2)!, E2' = sum (k+1) z^k/(k+3)! */
+        for (k = DRC_SERIES; k >= 0; k--) {
+            e[2] = cmul(e[2], z);
+            e[2].re += (cp_real)(k + 1) * inv_fact[k + 1];
+            e[3] = cmul(e[3], z);
+            e[3].re += (cp_real)(k + 1) * inv_fact[k + 2];
+        }
+        return;
+    }
+    {
+        struct cx ez, one;
+        cp_real sn, cs, er = cp_exp(z.re);
+        cp_sincos(z.im, &sn, &cs);
+        ez.re = er * cs;
+        ez.im = er * sn;
+        one.re = ez.re - ONE;
+        one.im = ez.im;
+        e[0] = cdiv(one, z);
+        one.re = e[0].re - ONE;
+        one.im = e[0].im;
+        e[1] = cdiv(one, z);
+        one.re = ez.re - e[0].re;
+        one.im = ez.im - e[0].im;
+        e[2] = cdiv(one, z);
+        one.re = e[0].re - CP_R(2.0) * e[1].re;
+        one.im = e[0].im - CP_R(2.0) * e[1].im;
+        e[3] = cdiv(one, z);
+    }
+}
+
+/* 3D insertion: deviation vectors g = angle(T, d) unit(T - (T.d) d); complex in the
+ * basis e1 = unit(g_A), e2 = d x e1. Twisted model g(u) = G_A + C (e^{zu} - 1)/z when
+ * rho = -G_B/G_A has Re > 0: r(z) = rho by DRC_NEWTON damped Newton steps (step length
+ * clipped to 1, Re z clamped to +-DRC_Q_MAX) from z0 = r^-1(|rho|) + 3i arg(rho).
+ * Error: Newton converges quadratically from z0 (the small-angle model is smooth in
+ * z); 30 steps leave |r(z) - rho| at rounding level on the test sets. */
+static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b,
+                                  struct drc_pt *m)
+{
+    struct cp_vec3 d, ga, gb, e1, e2, v1, vm;
+    cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs;
+    int i;
+    sub3(&b->p, &a->p, &d);
+    c = norm3(&d);
+    comb3(ONE / c, &d, ZERO, &d, &d);
+    td = dot3(&a->t, &d);
+    comb3(ONE, &a->t, -td, &d, &ga);
+    w = norm3(&ga);
+    ang = cp_atan2(w, td);
+    comb3(w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga, &ga);
+    td = dot3(&b->t, &d);
+    comb3(ONE, &b->t, -td, &d, &gb);
+    w = norm3(&gb);
+    ang = cp_atan2(w, td);
+    comb3(w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb, &gb);
+    {
+        cp_real na = norm3(&ga), nb = norm3(&gb);
+        struct cx gA, gB, rho;
+        if (na > ZERO) {
+            comb3(ONE / na, &ga, ZERO, &ga, &e1);
+            cross3(&d, &e1, &e2);
+            gA.re = na;
+            gA.im = ZERO;
+            gB.re = dot3(&gb, &e1);
+            gB.im = dot3(&gb, &e2);
+            rho = cdiv(gB, gA);
+            rho.re = -rho.re;
+            rho.im = -rho.im;
+        }
+        if (na > ZERO && nb > ZERO && rho.re > ZERO) {
+            struct cx z, e[4], r, dr, st, cc, zh;
+            cp_real sl;
+            z.re = rinv(cp_sqrt(rho.re * rho.re + rho.im * rho.im));
+            z.im = CP_R(3.0) * cp_atan2(rho.im, rho.re);
+            for (i = 0; i < DRC_NEWTON; i++) {
+                ce12(z, e);
+                /* r = E1/E2 - 1, r' = (E1' E2 - E1 E2') / E2^2 */
+                r = cdiv(e[0], e[1]);
+                r.re -= ONE + rho.re;
+                r.im -= rho.im;
+                dr = cmul(e[2], e[1]);
+                st = cmul(e[0], e[3]);
+                dr.re -= st.re;
+                dr.im -= st.im;
+                dr = cdiv(dr, cmul(e[1], e[1]));
+                st = cdiv(r, dr);
+                sl = st.re * st.re + st.im * st.im;
+                if (sl > ONE) {
+                    sl = ONE / cp_sqrt(sl);
+                    st.re *= sl;
+                    st.im *= sl;
+                }
+                z.re -= st.re;
+                z.im -= st.im;
+                z.re = z.re > DRC_Q_MAX ? DRC_Q_MAX : (z.re < -DRC_Q_MAX ? -DRC_Q_MAX : z.re);
+            }
+            ce12(z, e);
+            cc = cdiv(gA, e[1]); /* -C */
+            cc.re *= -HALF;      /* C/2 */
+            cc.im *= -HALF;
+            zh.re = HALF * z.re;
+            zh.im = HALF * z.im;
+            ce12(zh, e);
+            st = cmul(cc, e[1]);
+            d1re = gA.re + st.re;
+            d1im = st.im;
+            st = cmul(cc, e[0]);
+            gmre = gA.re + st.re;
+            gmim = st.im;
+            comb3(d1re, &e1, d1im, &e2, &v1);
+            comb3(gmre, &e1, gmim, &e2, &vm);
+        } else {
+            comb3(CP_R(0.25), &ga, CP_R(-0.25), &gb, &v1);
+            comb3(CP_R(-0.25), &ga, CP_R(-0.25), &gb, &vm);
+        }
+    }
+    /* M = A + c/(2 cos al) (cos al d + sin al unit(D1)), al = |D1| */
+    al = norm3(&v1);
+    cp_sincos(al, &sn, &cs);
+    w = HALF * c / cs;
+    comb3(w * cs, &d, al > ZERO ? w * sn / al : ZERO, &v1, &v1);
+    comb3(ONE, &a->p, ONE, &v1, &m->p);
+    al = norm3(&vm);
+    cp_sincos(al, &sn, &cs);
+    comb3(cs, &d, al > ZERO ? sn / al : ZERO, &vm, &m->t);
+}
+
+void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m)
+{
+    if (planar) {
+        insert_planar(a, b, m);
+    } else {
+        insert_3d(a, b, m);
+    }
+}
+
+int drc_thicken(struct drc_pt *buf, uint32_t n, uint32_t cap, uint32_t *n_out)
+{
+    uint32_t i;
+    int planar;
+    *n_out = n >= 1u ? 2u * n - 1u : 0u;
+    if (n < 2u) {
+        return CP_ERR_TOO_FEW;
+    }
+    if (cap < 2u * n - 1u) {
+        return CP_ERR_BUFFER;
+    }
+    planar = drc_is_planar(buf, n);
+    /* from the back: A, B read before indices 2i..2i+2 are written (2i >= i + 1 for
+     * i >= 1, so no unread entry is overwritten) */
+    for (i = n - 1u; i-- > 0u;) {
+        struct drc_pt a = buf[i], b = buf[i + 1u];
+        buf[2u * i + 2u] = b;
+        drc_insert(&a, &b, planar, &buf[2u * i + 1u]);
+        buf[2u * i] = a;
+    }
+    return CP_OK;
+}
+
+int drc_run(struct drc_pt *buf, uint32_t n, uint32_t passes, uint32_t cap, uint32_t *n_out)
+{
+    uint32_t k, m = n;
+    int err = drc_size(n, passes, n_out);
+    if (err != CP_OK) {
+        return err;
+    }
+    if (cap < *n_out) {
+        return CP_ERR_BUFFER;
+    }
+    err = drc_tangents(&buf[0].p, 2u, &buf[0].t, 2u, n);
+    if (err != CP_OK) {
+        return err;
+    }
+    for (k = 0; k < passes; k++) {
+        err = drc_thicken(buf, m, cap, &m);
+        if (err != CP_OK) {
+            return err;
+        }
+    }
+    return CP_OK;
+}
+
+/* ---- discrete characteristics and measures (A.4); host/test use ---- */
+
+cp_real drc_kappa3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c,
+                   int sgn)
+{
+    struct cp_vec3 u, v, w, x;
+    cp_real lu, lv, lw, s;
+    sub3(b, a, &u);
+    sub3(c, b, &v);
+    sub3(c, a, &w);
+    lu = norm3(&u);
+    lv = norm3(&v);
+    lw = norm3(&w);
+    if (!(lu > ZERO && lv > ZERO && lw > ZERO)) {
+        return ZERO;
+    }
+    cross3(&u, &v, &x);
+    s = norm3(&x) / (lu * lv);
+    if (sgn && x.z < ZERO) {
+        s = -s;
+    }
+    return CP_R(2.0) * s / lw;
+}
+
+cp_real drc_tau4(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c,
+                 const struct cp_vec3 *d)
+{
+    struct cp_vec3 u0, u1, u2, n1, n2, x;
+    cp_real l1, l2, l;
+    sub3(b, a, &u0);
+    sub3(c, b, &u1);
+    sub3(d, c, &u2);
+    cross3(&u0, &u1, &n1);
+    cross3(&u1, &u2, &n2);
+    l1 = norm3(&n1);
+    l2 = norm3(&n2);
+    l = norm3(&u1);
+    if (!(l1 > ZERO && l2 > ZERO && l > ZERO)) {
+        return ZERO;
+    }
+    cross3(&n1, &n2, &x);
+    return cp_atan2(dot3(&x, &u1) / (l * l1 * l2), dot3(&n1, &n2) / (l1 * l2)) / l;
+}
+
+/* One step of the extremum count: differences below thr are flat. */
+static void ext_step(cp_real dk, cp_real thr, int *last, uint32_t *count)
+{
+    int sg = dk > thr ? 1 : (dk < -thr ? -1 : 0);
+    if (sg != 0) {
+        if (*last != 0 && sg != *last) {
+            (*count)++;
+        }
+        *last = sg;
+    }
+}
+
+int drc_measure(const struct cp_vec3 *p, uint32_t n, int sgn, struct drc_measures *m)
+{
+    cp_real kmax = ZERO, thr, tm = ZERO, kp = ZERO, kpp = ZERO, tp = ZERO;
+    uint32_t i;
+    int last = 0, lsg = 0, tl = 0;
+    m->extrema = m->signs = m->between = m->t_extrema = 0;
+    m->kmin = m->kmax = m->tmin = m->tmax = ZERO;
+    if (n < 3u) {
+        return CP_ERR_TOO_FEW;
+    }
+    /* pass 1: ranges (the threshold 1e-6 max|k| needs max|k| first) */
+    for (i = 1; i + 1u < n; i++) {
+        cp_real k = drc_kappa3(&p[i - 1u], &p[i], &p[i + 1u], sgn);
+        kmax = cp_fabs(k) > kmax ? cp_fabs(k) : kmax;
+        m->kmin = (i == 1u || k < m->kmin) ? k : m->kmin;
+        m->kmax = (i == 1u || k > m->kmax) ? k : m->kmax;
+    }
+    for (i = 1; i + 2u < n; i++) {
+        cp_real t = drc_tau4(&p[i - 1u], &p[i], &p[i + 1u], &p[i + 2u]);
+        tm = cp_fabs(t) > tm ? cp_fabs(t) : tm;
+        m->tmin = (i == 1u || t < m->tmin) ? t : m->tmin;
+        m->tmax = (i == 1u || t > m->tmax) ? t : m->tmax;
+    }
+    thr = CP_R(1e-6) * kmax;
+    /* pass 2: extrema, sign changes, between-neighbour violations of odd points */
+    for (i = 1; i + 1u < n; i++) {
+        cp_real k = drc_kappa3(&p[i - 1u], &p[i], &p[i + 1u], sgn);
+        int sg = k > thr ? 1 : (k < -thr ? -1 : 0); /* |k| <= thr counts as 0 */
+        if (i >= 2u) {
+            ext_step(k - kp, thr, &last, &m->extrema);
+        }
+        if (sg != 0) {
+            m->signs += (lsg != 0 && sg != lsg) ? 1u : 0u;
+            lsg = sg;
+        }
+        if (i >= 3u && ((i - 1u) & 1u)) { /* point i - 1 (odd) between i - 2 and i */
+            cp_real lo = kpp < k ? kpp : k, hi = kpp < k ? k : kpp;
+            m->between += (kp < lo - thr || kp > hi + thr) ? 1u : 0u;
+        }
+        kpp = kp;
+        kp = k;
+    }
+    thr = CP_R(1e-6) * tm;
+    for (i = 1; i + 2u < n; i++) {
+        cp_real t = drc_tau4(&p[i - 1u], &p[i], &p[i + 1u], &p[i + 2u]);
+        if (i >= 2u) {
+            ext_step(t - tp, thr, &tl, &m->t_extrema);
+        }
+        tp = t;
+    }
+    return CP_OK;
+}
+
+int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct cp_vec3 *m)
+{
+    /* in the frame of the chord: x along d, y to the side of the turn. The triangle is
+     * A, B and X = the tangent lines' intersection; M inside <=> M is on the X side of
+     * the chord, on the inner side of both tangent lines. */
+    cp_real dx = b->p.x - a->p.x, dy = b->p.y - a->p.y, c = cp_sqrt(dx * dx + dy * dy);
+    cp_real mx = m->x - a->p.x, my = m->y - a->p.y, nx = m->x - b->p.x, ny = m->y - b->p.y;
+    cp_real ca, cb, cm, sl;
+#if CP_REAL_DOUBLE
+    sl = CP_R(1e-9) * c;
+#else
+    sl = CP_R(1e-5) * c;
+#endif
+    ca = a->t.x * my - a->t.y * mx; /* side of M w.r.t. the tangent line at A */
+    cb = b->t.x * ny - b->t.y * nx; /* ... at B */
+    cm = dx * my - dy * mx;         /* ... w.r.t. the chord */
+    (void)c;
+    /* left turn (T_A right of the chord, T_B left of it): the arc bulges to the right of
+     * the chord, B and A lie on the positive side of the other end's tangent line, so M
+     * is inside iff ca >= 0, cb >= 0 and cm <= 0 (mirrored for a right turn) */
+    {
+        cp_real sa = dx * a->t.y - dy * a->t.x; /* < 0: T_A right of the chord */
+        cp_real sb = dx * b->t.y - dy * b->t.x; /* > 0: T_B left of the chord */
+        if (cp_fabs(sa) <= sl * CP_R(1e-3) && cp_fabs(sb) <= sl * CP_R(1e-3)) {
+            return cp_fabs(cm) <= sl * c; /* straight: M on the chord */
+        }
+        if (sa * sb > ZERO) {
+            return 1; /* inflection segment: no triangle (not counted) */
+        }
+        if (sb > ZERO || sa < ZERO) {
+            return ca >= -sl && cb >= -sl && cm <= sl * c;
+        }
+        return ca <= sl && cb <= sl && cm >= -sl * c;
+    }
+}
+
+/* ---- the streaming iterator (planar) ---- */
+
+#define DRC_SAG_MARGIN CP_R(0.9) /* measured sagitta must be <= 0.9 tol (canal: same) */
+#define DRC_CUSP_EPS CP_R(1e-4)  /* D b^2 <= eps (q^2 b^2 + h^2): on or near an edge */
+
+/* Radius law over sigma in [0, 1] with derivatives in the arc length s = sigma s_tot:
+ * r[0] = R, r[1] = dR/ds, r[2] = d2R/ds2. COS: R = b cos(2 pi k sigma) + c; the others
+ * (CONST, LINEAR, the Bernstein CUBIC) as the power-basis cubic rp[] that
+ * drc_path_init converts them to, by Horner's rule with derivatives. */
+static void rlaw(const struct drc_path *it, cp_real sg, cp_real r[3])
+{
+    const cp_real *c = it->rp;
+    cp_real is = ONE / it->s_tot;
+    int i;
+    if (it->rc->surf.radius == CANAL_R_COS) {
+        cp_real w = CP_TWO_PI * c[2], sn, cs;
+        cp_sincos(w * sg, &sn, &cs);
+        r[0] = c[0] * cs + c[1];
+        r[1] = -c[0] * w * sn;
+        r[2] = -c[0] * w * w * cs;
+    } else {
+        r[0] = r[1] = r[2] = ZERO;
+        for (i = 3; i >= 0; i--) {
+            r[2] = r[2] * sg + TWO * r[1];
+            r[1] = r[1] * sg + r[0];
+            r[0] = r[0] * sg + c[i];
+        }
+    }
+    r[1] *= is;
+    r[2] *= is * is;
+}
+
+static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
+{
+    o->p = it->g->p[i];
+    o->t = it->tan[i];
+}
+
+/* Put the walk at position pos (travel order, 0..steps): cur = the point at pos,
+ * stk[d - 1] = the far end (in travel) of the depth-d interval holding the leaf
+ * [pos, pos + 1] of its segment's subdivision tree. From pos - 1 (same segment) only the
+ * levels below the node of pos are new: ctz(leaf index) inserts, one per point on
+ * average; otherwise the descent along the bits of the leaf index (K inserts). Same
+ * nodes, same operands (an insert reads only its interval's ends): same bits, so
+ * seek(k) reproduces the streamed point exactly. A backward line (dir) inserts with
+ * the ends swapped back into curve order. */
+static void walk_to(struct drc_path *it, uint32_t pos)
+{
+    uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d, dn = 0u;
+    uint32_t js = pos >> kk;
+    struct drc_pt far, tmp;
+    if (pos >= it->steps) {
+        orig(it, it->dir ? 0u : it->nseg, &it->cur);
+        it->pos = pos;
+        return;
+    }
+    js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
+    orig(it, it->dir ? js : js + 1u, &far);
+    if (m != 0u && pos == it->pos + 1u) {
+        tmp = it->stk[kk - 1u]; /* the point at pos: the old leaf's far end */
+        dn = kk;                /* depth of node pos: K - ctz(m); m has a set bit below K */
+        while ((z & 1u) == 0u && dn > 1u) {
+            z >>= 1;
+            dn--;
+        }
+    } else {
+        orig(it, it->dir ? js + 1u : js, &it->cur);
+    }
+    for (d = dn > 0u ? dn : 1u; d <= kk; d++) {
+        const struct drc_pt *pf = d == 1u ? &far : &it->stk[d - 2u];
+        if (d != dn) {
+            if (it->dir) {
+                insert_planar(pf, &it->cur, &tmp);
+            } else {
+                insert_planar(&it->cur, pf, &tmp);
+            }
+        }
+        if ((m >> (kk - d)) & 1u) {
+            it->stk[d - 1u] = *pf;
+            it->cur = tmp;
+        } else {
+            it->stk[d - 1u] = tmp;
+        }
+    }
+    it->pos = pos;
+}
+
+/* Label of line j (contact-frame start angle u_j = u0 + j (u1 - u0)/(n - 1) on the first
+ * circle): alpha = q0 cos(u_j/2), b = sin(u_j/2) (canal.h). */
+static void label(const struct drc_path *it, uint32_t j, cp_real *a, cp_real *b)
+{
+    const struct toolpath_cfg *rc = it->rc;
+    cp_real cs, du = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : ZERO;
+    cp_sincos(HALF * (rc->u0 + (cp_real)j * du), b, &cs);
+    *a = it->q0 * cs;
+}
+
+/* Start line jl at its first point: direction, walk, arc length, Lambda, R, label. */
+static void line_start(struct drc_path *it, uint32_t jl)
+{
+    cp_real r[3];
+    it->line = (int32_t)jl;
+    it->dir = (uint8_t)(it->edge ? (jl & 1u) : 0u);
+    walk_to(it, 0u);
+    it->s = it->dir ? it->s_tot : ZERO;
+    it->lam = it->dir ? it->lam_tot : ZERO;
+    it->kap = ZERO;
+    rlaw(it, it->dir ? ONE : ZERO, r);
+    it->r_cur = r[0];
+    label(it, jl, &it->lab_a, &it->lab_b);
+}
+
+static cp_real walk_sigma(const struct drc_path *it)
+{
+    cp_real sg = it->s / it->s_tot;
+    return sg < ZERO ? ZERO : (sg > ONE ? ONE : sg);
+}
+
+/* One step along the line (pos -> pos + 1) with the sums over the leaf a -> b (curve
+ * order) of chord h and turn th (of the end tangents): s += the leaf's arc length, h times
+ * the arc/chord ratio of a circle of that turn, (th/2)/sin(th/2) = 1 + (1 - cos th)/12 +
+ * O(th^4) (relative error < th^4/300 <= 1e-9 for the leaf turns here; a backward line
+ * subtracts, s runs from s_tot down), and Lambda = integral kappa dR over the leaf as
+ * kap dR with kap = kappa_leaf = 2 sin(th/2)/h (the circle through the leaf's ends with
+ * those tangents; exact for circles). Error per leaf: arc cov(kappa, p) <= arc^3
+ * max|kappa'| max|p'| / 12 (p = dR/ds): O(h^2) over the curve, 4x smaller per pass;
+ * exact when C is a circle (Lambda = kappa (R - R0), MATH-canal). A backward line
+ * subtracts the same leaf terms (Lambda_i = Lambda_{i+1} - kappa (R_{i+1} - R_i)), so
+ * every line's Lambda at a point is the same sum. In CURVE mode Lambda is unused. */
+static void line_step(struct drc_path *it)
+{
+    struct drc_pt prev = it->cur;
+    const struct drc_pt *a = it->dir ? &it->cur : &prev, *b = it->dir ? &prev : &it->cur;
+    cp_real r[3], dx, dy, h, c;
+    walk_to(it, it->pos + 1u);
+    dx = b->p.x - a->p.x;
+    dy = b->p.y - a->p.y;
+    h = cp_sqrt(dx * dx + dy * dy);
+    c = a->t.x * b->t.x + a->t.y * b->t.y;
+    /* 2 sin(th/2) = 2 sin th / sqrt(2 (1 + cos th)); |th| < 90 deg so 1 + c > 1 */
+    it->kap = TWO * (a->t.x * b->t.y - a->t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    h *= ONE + (ONE - c) / CP_R(12.0);
+    it->s += it->dir ? -h : h;
+    rlaw(it, walk_sigma(it), r);
+    it->lam += it->kap * (r[0] - it->r_cur); /* the same in both directions */
+    it->r_cur = r[0];
+}
+
+/* Frame of the canal surface at point q, sigma sg, curvature kap. */
+static CP_NOINLINE void frame_at(const struct drc_path *it, const struct drc_pt *q, cp_real sg,
+                     cp_real kap, struct canal_frame *f)
+{
+    cp_real r[3];
+    rlaw(it, sg, r);
+    f->x = q->p.x;
+    f->y = q->p.y;
+    f->tx = q->t.x;
+    f->ty = q->t.y;
+    f->r = r[0];
+    f->p = r[1];
+    f->q2 = ONE + r[1] * r[1];
+    f->kappa = kap;
+    f->dpds = r[2];
+}
+
+/* Link jl -> jl + 1 at fraction fr: it runs on the end circle of line jl (its last
+ * point for even jl, its first for odd jl) from line jl's point to line jl + 1's, at
+ * uniform contact-frame angle u = ua + fr d (d = the signed gap, the short way); the
+ * family-1 label there is (q cos(u/2), sin(u/2)) (canal.h), computed here in half
+ * angles. Returns the gap |d|. */
+static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_real fr,
+                       struct canal_frame *f, cp_real *h, cp_real *b)
+{
+    struct drc_pt q;
+    int end = (jl & 1u) == 0u;
+    cp_real lam = end ? it->lam_tot : ZERO, qq, ha, ba, hb, bb, d;
+    orig(it, end ? it->nseg : 0u, &q);
+    frame_at(it, &q, end ? ONE : ZERO, ZERO, f);
+    qq = cp_sqrt(f->q2);
+    label(it, jl, &ha, &ba);
+    label(it, jl + 1u, &hb, &bb);
+    ha += lam * ba;
+    hb += lam * bb;
+    d = cp_atan2(ha * qq * bb - qq * ba * hb, ha * hb + qq * qq * ba * bb);
+    cp_sincos(cp_atan2(qq * ba, ha) + fr * d, b, &ha);
+    *h = qq * ha;
+    return TWO * cp_fabs(d);
+}
+
+/* Point r of block jl (line jl: r = 0..steps in travel order; r > steps: point r - steps
+ * of the link jl -> jl + 1) into pt. Positions the walk: CURVE mode by the tree descent
+ * (or one step), EDGE mode by re-walking the line from its start when it is not ahead
+ * (Lambda and s are sequential sums, so a seek re-walks, same bits). EDGE: the canal
+ * point (surface, tool centre or tip). Checks (init; next() ignores them): R > 0, tool
+ * radius < R, and regularity of the surface and of the tool's offset surface,
+ * D b^2 > eps (q^2 b^2 + h^2), except at a line's first point (no leaf walked yet). */
+static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
+                                struct toolpath_pt *pt)
+{
+    const struct toolpath_cfg *rc = it->rc;
+    struct canal_frame f;
+    struct canal_point cp;
+    cp_real h, b, den, off = rc->output == TOOLPATH_OUT_SURFACE ? ZERO : rc->tool_r;
+    pt->line = -1;
+    pt->index = (uint16_t)(r - it->steps);
+    pt->t = (jl & 1u) ? ZERO : ONE;
+    if (r > it->steps) {
+        (void)link_at(it, jl, (cp_real)(r - it->steps) / (cp_real)(it->link + 1u), &f, &h, &b);
+    } else {
+        if (it->line != (int32_t)jl || it->pos > r) {
+            line_start(it, jl);
+        }
+        if (!it->edge && it->pos + 1u < r) {
+            walk_to(it, r);
+        }
+        while (it->pos < r) {
+            line_step(it);
+        }
+        if (!it->dir && r == it->steps) {
+            it->lam_tot = it->lam; /* a forward line's sum: backward lines start here */
+        }
+        pt->line = (int16_t)jl;
+        pt->index = (uint16_t)(it->dir ? it->steps - r : r);
+        pt->p = it->cur.p;
+        pt->n = it->cur.t;
+        pt->t = (cp_real)r / (cp_real)it->steps;
+        if (!it->edge) {
+            return CP_OK;
+        }
+        pt->t = walk_sigma(it);
+        frame_at(it, &it->cur, pt->t, it->kap, &f);
+        h = it->lab_a + it->lam * it->lab_b;
+        b = it->lab_b;
+        if (!(f.r > rc->tool_r) || !(f.r > ZERO)) {
+            return rc->tool_r > ZERO && f.r > ZERO ? CP_ERR_TOOL : CP_ERR_RADIUS;
+        }
+    }
+    canal_point(&f, h, b, off, &cp);
+    pt->p = cp.m;
+    pt->n = cp.n;
+    if (rc->output == TOOLPATH_OUT_TIP) {
+        pt->p.z -= off;
+    }
+    den = DRC_CUSP_EPS * (f.q2 * b * b + h * h);
+    if (r != 0u && !(canal_regularity(&f, h, b, ZERO) > den &&
+                     canal_regularity(&f, h, b, rc->tool_r) > den)) {
+        return CP_ERR_CUSP;
+    }
+    return CP_OK;
+}
+
+/* Walk every block's points r = lo..hi (no link after the last line; CURVE mode: one
+ * line): the checks of point_at, finite points, and the largest sagitta of the lines
+ * (deviation of each point from its neighbours' chord / 4: exact for circular arcs of
+ * equal steps) into *sag. */
+static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_real *sag)
+{
+    struct toolpath_pt pt;
+    struct cp_vec3 q0, q1, u, v;
+    cp_real x;
+    uint32_t jl, r;
+    int err;
+    q0 = q1 = it->cur.p; /* (set by r = 0 and 1 before use) */
+    for (jl = 0; jl < (it->edge ? it->n : 1u) && !(lo > it->steps && jl + 1u == it->n); jl++) {
+        for (r = lo; r <= hi; r++) {
+            err = point_at(it, jl, r, &pt);
+            if (err == CP_OK && !cp_isfinite(pt.p.x + pt.p.y + pt.p.z)) {
+                err = CP_ERR_NUMERIC;
+            }
+            if (err != CP_OK) {
+                return err;
+            }
+            if (r >= 2u && r <= it->steps) { /* distance of q1 from the chord q0 pt.p */
+                sub3(&pt.p, &q0, &u);
+                sub3(&q1, &q0, &v);
+                x = dot3(&u, &u);
+                comb3(ONE, &v, -dot3(&u, &v) / x, &u, &v);
+                x = CP_R(0.25) * norm3(&v);
+                *sag = x > *sag ? x : *sag;
+            }
+            q0 = q1;
+            q1 = pt.p;
+        }
+    }
+    return CP_OK;
+}
+
+int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct toolpath_cfg *rc)
+{
+    uint32_t kk, i;
+    cp_real sag = ZERO, *c = it->rp, t = rc != NULL ? rc->tol : ZERO, x;
+    int err = CP_ERR_INVAL, au;
+    it->count = 0;
+    it->k = 0;
+    it->line = -1;
+    it->g = g;
+    it->rc = rc;
+    if (g == NULL || rc == NULL || g->edge > 1u || rc->output > TOOLPATH_OUT_TIP) {
+        return CP_ERR_INVAL;
+    }
+    au = g->passes == DRC_PASSES_AUTO;
+    if (!au && g->passes > CP_MAX_PASSES) {
+        return CP_ERR_TOO_MANY;
+    }
+    /* the raster, checked as toolpath_init does (EDGE only, but tol) */
+    if (!cp_isfinite(t + rc->u0 + rc->u1 + rc->tool_r + rc->surf.rp[0] + rc->surf.rp[1] +
+                     rc->surf.rp[2] + rc->surf.rp[3])) {
+        return CP_ERR_NONFINITE;
+    }
+    if (au && !(t >= CP_R(1e-5) && t <= CP_R(10.0))) {
+        return CP_ERR_RANGE;
+    }
+    it->edge = g->edge;
+    it->n = 1u;
+    it->link = 0u;
+    it->s_tot = ONE;
+    it->lam_tot = ZERO;
+    it->q0 = ONE;
+    for (i = 0; i < 4u; i++) {
+        c[i] = rc->surf.rp[i];
+        if (it->edge && cp_fabs(c[i]) > CANAL_COORD_MAX) {
+            return CP_ERR_RADIUS;
+        }
+    }
+    if (it->edge) {
+        if (rc->labels != TOOLPATH_LABEL_ANGLE || rc->mode != TOOLPATH_LINES ||
+            rc->surf.radius > CANAL_R_CUBIC ||
+            (rc->output == TOOLPATH_OUT_SURFACE) != (rc->tool_r == ZERO)) {
+            return CP_ERR_INVAL;
+        }
+        if (rc->n > CP_MAX_LINES) {
+            return CP_ERR_TOO_MANY;
+        }
+        if (rc->n == 0u || cp_fabs(rc->u0) > CP_PI || cp_fabs(rc->u1) > CP_PI ||
+            (rc->u0 == rc->u1 && rc->n > 1u) || rc->tool_r < ZERO ||
+            (rc->link != TOOLPATH_LINK_AUTO && rc->link > CP_MAX_LINK)) {
+            return CP_ERR_RANGE;
+        }
+        it->n = rc->n;
+        if (rc->surf.radius != CANAL_R_COS) { /* the power basis of R(sigma) */
+            if (rc->surf.radius == CANAL_R_CUBIC) {
+                x = c[1] - c[2];
+                c[3] += CP_R(3.0) * x - c[0];
+                c[2] = CP_R(3.0) * (c[0] - c[1] - x);
+                c[1] = CP_R(3.0) * (c[1] - c[0]);
+            } else {
+                c[1] = rc->surf.radius == CANAL_R_LINEAR ? c[1] - c[0] : ZERO;
+                c[2] = ZERO;
+                c[3] = ZERO;
+            }
+        }
+    }
+    err = tangents_planar(g->p, 1u, it->tan, 1u, g->n);
+    if (err != CP_OK) {
+        return err;
+    }
+    it->nseg = (uint8_t)(g->n - 1u);
+    for (kk = au ? 1u : g->passes; kk <= (au ? CP_MAX_PASSES : g->passes); kk++) {
+        uint32_t e = it->edge;
+        if (((uint32_t)it->nseg << kk) > CP_MAX_STEPS) {
+            return au ? CP_ERR_TOL : CP_ERR_TOO_MANY;
+        }
+        it->passes = (uint8_t)kk;
+        it->steps = (uint16_t)(it->nseg << kk);
+        sag = ZERO;
+        /* the curve itself: its sagitta, and the arc length (sigma's scale) */
+        it->edge = 0u;
+        err = walk(it, 0u, it->steps, &sag);
+        it->s_tot = it->s;
+        it->edge = (uint8_t)e;
+        if (err == CP_OK && e) { /* every line (R, tool, cusp, sagitta): Lambda on the way */
+            cp_real r[3];
+            rlaw(it, ZERO, r);
+            it->q0 = cp_sqrt(ONE + r[1] * r[1]);
+            err = walk(it, 0u, it->steps, &sag);
+        }
+        if (err != CP_OK) {
+            return err;
+        }
+        if (!au || sag <= DRC_SAG_MARGIN * t) {
+            break;
+        }
+    }
+    if (kk > (au ? CP_MAX_PASSES : g->passes)) {
+        return CP_ERR_TOL;
+    }
+    if (it->edge) {
+        /* link points: uniform angle steps on the end circle (radius (R - off)/q), so
+         * the chord tolerance fixes them: step 4 x sqrt(tol / 2 rad) DRC_SAG_MARGIN
+         * (x <= asin x: the sagitta of that step is <= 0.81 tol); then every link point
+         * is checked (regularity) */
+        cp_real worst = ONE, h, b;
+        struct canal_frame f;
+        for (i = 0; i + 1u < it->n; i++) {
+            x = link_at(it, i, ZERO, &f, &h, &b);
+            h = (f.r - (rc->output == TOOLPATH_OUT_SURFACE ? ZERO : rc->tool_r)) / cp_sqrt(f.q2);
+            if (h > t && t > ZERO) {
+                x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
+                worst = x > worst ? x : worst;
+            }
+        }
+        if (!(worst - ONE <= (cp_real)CP_MAX_LINK)) {
+            return CP_ERR_TOL;
+        }
+        it->link = rc->link != TOOLPATH_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
+        err = walk(it, it->steps + 1u, (uint32_t)it->steps + it->link, &sag);
+        if (err != CP_OK) {
+            return err;
+        }
+    }
+    it->mode = TOOLPATH_LINES;
+    it->count = (uint32_t)it->n * ((uint32_t)it->steps + 1u) + (uint32_t)(it->n - 1u) * it->link;
+    it->line = -1;
+    return CP_OK;
+}
+
+uint32_t drc_path_count(const struct drc_path *it)
+{
+    return it->count;
+}
+
+int drc_path_seek(struct drc_path *it, uint32_t k)
+{
+    if (k > it->count) {
+        return CP_ERR_RANGE;
+    }
+    it->k = k;
+    it->line = -1; /* next() re-positions (descent or re-walk of the line) */
+    return CP_OK;
+}
+
+int drc_path_next(struct drc_path *it, struct toolpath_pt *pt)
+{
+    uint32_t block = (uint32_t)it->steps + 1u + it->link;
+    if (it->k >= it->count) {
+        return CP_ERR_DONE;
+    }
+    (void)point_at(it, it->k / block, it->k % block, pt);
+    it->k++;
+    return CP_OK;
+}
+
+#if CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 2u * 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 2u * 320u, drc_cfg_fits);
+#else
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 320u, drc_cfg_fits);
+#endif
+CP_STATIC_ASSERT(sizeof(struct drc_pt) == 2u * sizeof(struct cp_vec3), drc_pt_packed);

@@ -1,0 +1,238 @@
+/* drc.h - discretely represented curves (seed 001): DRC-EXP thickening and its toolpaths.
+ * SPDX-License-Identifier: MIT
+ *
+ * A few points P_0..P_{N-1} (N = 3..CP_MAX_DRC_POINTS, mm, planar or 3D) are thickened
+ * pass by pass, N -> 2N - 1 (originals kept at even indices), so that the discrete
+ * curvature changes regularly and never oscillates: the algorithm DRC-EXP of
+ * ../shared/docs/MATH-seeds-2-3-4.md part A.2 (it overrides the paper).
+ *
+ *   step 0  chords d_i, adjoining-plane normals n_j (oriented consistently), signed
+ *           turning phi_j, discrete curvature ks_j (3-point circle) and AP-dihedral
+ *           torsion tau_i (correction A2); the rejections of A.3.
+ *   step 1  tangent assignment, once: angle a_j = t_j phi_j of the tangent at vertex j
+ *           from chord j, t_j in [0, 1] (the tangent lies inside the chord angle);
+ *           G2 of the exponential-curvature segment model at every vertex by a
+ *           DRC_T_BISECT-step bisection per vertex, DRC_SWEEPS Gauss-Seidel sweeps;
+ *           end tangents from the neighbour's curvature ratio (N >= 4) or the circle
+ *           (N = 3); 3D: the A3 tilt chi out of the adjoining plane.
+ *   step 2  one pass acts on every segment (A, B, T_A, T_B) independently: closed
+ *           form (planar: real exponential model, q by bisection) or the twisted
+ *           exponential model (3D: complex z by DRC_NEWTON damped Newton steps).
+ * Because step 2 is per segment, K passes over one original segment are a binary
+ * subdivision tree of depth K: the iterator streams it leaf by leaf with an explicit
+ * stack of K + 1 nodes (no buffer of the final size), and drc_thicken() does one
+ * whole pass in place for hosts and tests. Both call drc_insert(): the streamed
+ * points equal the in-place ones bit for bit (tests/test_drc.c).
+ *
+ * Every count above is fixed (double build: the counts of A.2; float build: the
+ * counts at which float precision is exhausted, see DRC_Q_BISECT). Nothing
+ * allocates, nothing recurses; the only transcendental calls are cp_exp,
+ * cp_sincos and cp_atan2 (cp_math.h: deterministic float kernels).
+ *
+ * Toolpaths (SURFACE DRC, docs/PROTOCOL.md, job_drc.c):
+ *   CURVE mode (edge = 0): the thickened curve itself, one line of
+ *     2^K (N - 1) + 1 points; pt.n = the unit tangent of the DRC model. Planar only
+ *     (z = 0 everywhere, else CP_ERR_OFF_PLANE): see "Footprint".
+ *   EDGE mode (edge = 1): a fillet along the sketched edge. The (planar, z = 0) DRC
+ *     curve is the contact curve C of a canal surface (canal.h) whose radius is the
+ *     raster's RADIUS law over the normalised arc length sigma in [0, 1] of the
+ *     thickened polyline; the family-2 curvature lines of LINES n u0 u1 are streamed
+ *     zigzag with link points on the end circles, exactly like TOOLPATH_LINES;
+ *     pt.n = the unit surface normal. Lambda = integral kappa dR is summed over the
+ *     thickened points (drc.c, rule and error bound there).
+ *
+ * Footprint (the whole M4F image must fit 32 KB flash): the stream uses only the planar
+ * core (validation, tangent assignment, planar insertion) and the iterator, ~6.6 KB of
+ * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
+ * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4
+ * measures stay in this library, compiled and tested on the host and in the M4F unit
+ * image, but the stream does not reference them, so --gc-sections drops them from the
+ * firmware image: a 3D point set is CP_ERR_OFF_PLANE at RUN (error:25). Other trade-offs:
+ * the iterator keeps pointers to the geometry and the raster (no copies: less RAM and
+ * code; both must outlive the run, as struct job does); one point routine serves init's
+ * verification walk, next and seek; link points are uniform in contact-frame angle on
+ * the end circle (their count exact for the chord tolerance, no lerp correction); the
+ * CONST/LINEAR/CUBIC radius laws are one power-basis cubic; the raster is checked with
+ * toolpath_init's codes but a non-finite sum of tol, u0, u1, tool_r and the radius
+ * parameters is one CP_ERR_NONFINITE (huge finite values that overflow included).
+ */
+#ifndef DRC_H
+#define DRC_H
+
+#include "toolpath.h"
+
+/* Fixed iteration counts of A.2. The double build uses the published counts. The float
+ * build stops where float precision is exhausted: a bisection halves a bracket of 98 (q)
+ * or 1 (t) 30 / 28 times, leaving 9e-8 / 4e-9, below the float resolution of what is
+ * bracketed; the Gauss-Seidel sweeps contract by ~0.35 per sweep (measured on the test
+ * sets: tangent change 4e-7 after 12 sweeps, 2e-8 after 15), so 16 sweeps are at the
+ * float floor. */
+#if CP_REAL_DOUBLE
+#define DRC_Q_BISECT 64 /* r^-1: bisection steps for q on [-DRC_Q_MAX, DRC_Q_MAX] */
+#define DRC_T_BISECT 60 /* tangent parameter t_j on [0, 1], per vertex and sweep */
+#define DRC_SWEEPS 40   /* Gauss-Seidel sweeps over the vertices */
+#else
+#define DRC_Q_BISECT 30
+#define DRC_T_BISECT 28
+#define DRC_SWEEPS 16
+#endif
+#define DRC_NEWTON 30   /* damped Newton steps of the 3D twisted model */
+#define DRC_Q_MAX CP_R(49.0)
+
+/* Points closer than this fraction of the bounding-box size D are coincident
+ * (A.3: 1e-12 D in double; the float build cannot resolve less than ~1e-6 D). */
+#if CP_REAL_DOUBLE
+#define DRC_COINCIDENT_REL 1.0e-12
+#else
+#define DRC_COINCIDENT_REL 1.0e-6f
+#endif
+
+/* Largest final point count of one curve: 2^CP_MAX_PASSES (CP_MAX_DRC_POINTS - 1) + 1. */
+#define DRC_MAX_OUT ((((uint32_t)1u) << CP_MAX_PASSES) * (CP_MAX_DRC_POINTS - 1u) + 1u)
+
+/* A point of a thickened curve: position (mm) and unit tangent. */
+struct drc_pt {
+    struct cp_vec3 p;
+    struct cp_vec3 t;
+};
+
+/* The geometry of a DRC job (union path_geom member; lives in struct job for the
+ * whole run, the iterator keeps a const pointer to it). */
+struct drc_cfg {
+    struct cp_vec3 p[CP_MAX_DRC_POINTS]; /* the points, mm, |coordinate| <= CANAL_COORD_MAX */
+    uint8_t n;      /* points given, 0..CP_MAX_DRC_POINTS (>= 3 at init) */
+    uint8_t passes; /* K, 0..CP_MAX_PASSES; DRC_PASSES_AUTO = derive from raster tol */
+    uint8_t edge;   /* 0: the curve itself (CURVE mode); 1: fillet along it (EDGE mode) */
+};
+
+#define DRC_PASSES_AUTO 0xFFu
+
+/* The streaming iterator (struct path's union). */
+struct drc_path {
+    const struct drc_cfg *g;          /* the geometry (not copied: must outlive the run) */
+    const struct toolpath_cfg *rc;    /* the raster (not copied: must outlive the run) */
+    struct cp_vec3 tan[CP_MAX_DRC_POINTS]; /* step 1: unit tangents at the original points */
+    struct drc_pt cur;                /* the point of the walk */
+    struct drc_pt stk[CP_MAX_PASSES]; /* stk[d - 1]: far end of the depth-d interval */
+    uint32_t count, k;                /* total points, points emitted */
+    uint32_t pos;                     /* walk position along the line, 0..steps */
+    uint16_t n, steps, link;          /* lines, steps per line (2^K (N-1)), link points */
+    uint8_t mode, edge, passes, dir, nseg;
+    int32_t line;                     /* line of the walk (-1: none) */
+    cp_real rp[4];                    /* radius law: COS b c k, else power-basis cubic (mm) */
+    cp_real q0;                       /* sqrt(1 + (dR/ds)^2) at P_0 (labels) */
+    cp_real lab_a, lab_b;             /* label of the walk's line */
+    cp_real s, lam, r_cur, kap;       /* walk: arc length, Lambda, R, last leaf's curvature */
+    cp_real s_tot, lam_tot;           /* at the last point (forward walk) */
+};
+
+/* Size of K passes over n points: 2^K (n - 1) + 1, in *need.
+ * Errors: CP_ERR_TOO_FEW n < 3, CP_ERR_TOO_MANY K > CP_MAX_PASSES. */
+CP_MUST_CHECK int drc_size(uint32_t n, uint32_t passes, uint32_t *need);
+
+/* Steps 0 and 1 on n points p[i * ps] (i < n): validate and write the unit tangents
+ * t[i * ts]. Strides are in struct cp_vec3 units (a struct drc_pt array: ps = ts = 2).
+ * Errors (nothing written), A.3:
+ *   CP_ERR_TOO_FEW    n < 3
+ *   CP_ERR_TOO_MANY   n > CP_MAX_DRC_POINTS
+ *   CP_ERR_NONFINITE  a coordinate NaN/Inf
+ *   CP_ERR_RANGE      |coordinate| > CANAL_COORD_MAX
+ *   CP_ERR_COINCIDENT a chord <= DRC_COINCIDENT_REL D (D = bounding-box diagonal)
+ *   CP_ERR_TURN       a turning angle >= 90 deg (d_{j-1} . d_j <= 0)
+ *   CP_ERR_TWIST      |dihedral of consecutive oriented adjoining planes| >= 45 deg
+ * All-collinear input is not an error (straight tangents). Returns CP_OK. */
+CP_MUST_CHECK int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
+                               unsigned ts, uint32_t n);
+
+/* 1 if every position and tangent has z == 0 exactly (the planar closed form is used),
+ * else 0. */
+int drc_is_planar(const struct drc_pt *buf, uint32_t n);
+
+/* Step 2 on one segment: the new point m between a and b (planar: 1 = the real model,
+ * requires z == 0 everywhere; 0 = the 3D twisted model). Cannot fail: the inputs come
+ * from drc_tangents or an earlier pass (chord > 0, tangent angles < 90 deg). */
+void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m);
+
+/* One pass in place: buf[0..n-1] (positions and tangents, e.g. from drc_tangents) ->
+ * buf[0..2n-2], originals at even indices. cap = capacity of buf in points.
+ * *n_out = 2n - 1 (also on CP_ERR_BUFFER: the size needed).
+ * Errors: CP_ERR_TOO_FEW n < 2, CP_ERR_BUFFER cap < 2n - 1 (buf unchanged). */
+CP_MUST_CHECK int drc_thicken(struct drc_pt *buf, uint32_t n, uint32_t cap, uint32_t *n_out);
+
+/* Steps 0-2: n points in buf[].p -> tangents, then `passes` passes in place.
+ * *n_out = 2^passes (n - 1) + 1 (the size needed, also on CP_ERR_BUFFER).
+ * Errors: drc_size, drc_tangents codes, CP_ERR_BUFFER cap < *n_out (nothing written). */
+CP_MUST_CHECK int drc_run(struct drc_pt *buf, uint32_t n, uint32_t passes, uint32_t cap,
+                          uint32_t *n_out);
+
+/* ---- discrete characteristics and the measures of A.4 (any polyline) ---- */
+
+/* Curvature of the circle through a, b, c (1/mm): 2 sin(turn at b) / |c - a|, signed
+ * by +z (left turn > 0) when sgn != 0, else >= 0. 0 for collinear or coincident. */
+cp_real drc_kappa3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c,
+                   int sgn);
+
+/* AP-dihedral torsion of chord b->c (A2): angle(AP(a,b,c), AP(b,c,d)) / |c - b|,
+ * signed, 1/mm. 0 when an adjoining plane is undefined. */
+cp_real drc_tau4(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c,
+                 const struct cp_vec3 *d);
+
+struct drc_measures {
+    uint32_t extrema;      /* strict local extrema of k_1..k_{n-2} (steps < 1e-6 max|k| ignored) */
+    uint32_t signs;        /* sign changes of k (|k| <= 1e-6 max|k| counts as 0 and is skipped) */
+    uint32_t between;      /* odd i (the last pass's new points): k_i outside [min, max] of
+                              k_{i-1}, k_{i+1} by more than 1e-6 max|k| */
+    uint32_t t_extrema;    /* extrema of tau_2..tau_{n-4} (interior chords), 3D */
+    cp_real kmin, kmax;    /* range of k over i = 1..n-2 */
+    cp_real tmin, tmax;    /* range of tau over the interior chords (0 if none) */
+};
+
+/* Measures of A.4 on the polyline p[0..n-1] (n >= 3): curvature signed by +z when
+ * sgn != 0 (planar data). The oscillation count of a method is
+ * extrema(output) - extrema(input); new sign changes likewise.
+ * Errors: CP_ERR_TOO_FEW n < 3. */
+CP_MUST_CHECK int drc_measure(const struct cp_vec3 *p, uint32_t n, int sgn,
+                              struct drc_measures *m);
+
+/* Tangent-triangle containment (2D): 1 if m lies in the closed triangle of a, b and the
+ * intersection of the tangent lines at a and b (or on the chord when the tangents are
+ * parallel to it), with a relative slack of 1e-9 (double) / 1e-5 (float) of |b - a|. */
+int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct cp_vec3 *m);
+
+/* ---- the streaming iterator (path.h) ---- */
+
+/* Validate g (drc_tangents codes, planar only) and the raster, fix the counts, walk once.
+ * The iterator keeps g and raster by pointer: both must stay unchanged and alive until
+ * the last next/seek.
+ * K = g->passes, or with DRC_PASSES_AUTO the smallest K whose leaf sagitta (measured on
+ * the thickened curve, and in EDGE mode on every streamed line) is <= raster->tol.
+ * raster fields used: CURVE mode: tol (AUTO only); EDGE mode: n, u0, u1 (ANGLE labels
+ * only), link, tol, output, tool_r, surf.radius, surf.rp (the RADIUS law over sigma).
+ * Errors: the drc_tangents codes, plus
+ *   CP_ERR_INVAL      g NULL, edge/labels/output out of range, tool with OUT_SURFACE
+ *   CP_ERR_TOO_MANY   passes > CP_MAX_PASSES, n > CP_MAX_LINES, 2^K (N-1) > CP_MAX_STEPS
+ *   CP_ERR_RANGE      |u| > pi, u0 == u1 with n > 1, n == 0, tol out of [1e-5, 10]
+ *   CP_ERR_OFF_PLANE  a point off z = 0 (the stream is planar: "Footprint")
+ *   CP_ERR_RADIUS     EDGE: R <= 0 at a point (or radius parameters out of range)
+ *   CP_ERR_TOOL       EDGE: tool_r >= min R
+ *   CP_ERR_TOL        AUTO: the tolerance needs more than CP_MAX_PASSES passes, or a link
+ *                     more than CP_MAX_LINK points
+ *   CP_ERR_CUSP       EDGE: a streamed point on or beyond a cuspidal edge
+ *   CP_ERR_NUMERIC    a non-finite value in the walk
+ * Returns CP_OK; then drc_path_next yields exactly drc_path_count() points. */
+CP_MUST_CHECK int drc_path_init(struct drc_path *it, const struct drc_cfg *g,
+                                const struct toolpath_cfg *raster);
+
+uint32_t drc_path_count(const struct drc_path *it);
+
+/* Next point (toolpath_pt conventions: line j or -1 for a link point, index).
+ * Returns CP_OK or CP_ERR_DONE. */
+int drc_path_next(struct drc_path *it, struct toolpath_pt *pt);
+
+/* Restart at point k (0 <= k <= count), bit for bit. CURVE mode: descends the tree
+ * along the bits of the index (K inserts) at the next next(). EDGE mode: Lambda and the arc length are
+ * sums along the line, so the walk restarts at the line's first point and re-walks
+ * (at most steps inserts). Returns CP_OK or CP_ERR_RANGE. */
+CP_MUST_CHECK int drc_path_seek(struct drc_path *it, uint32_t k);
+
+#endif /* DRC_H */

@@ -1,0 +1,626 @@
+/* gsr.c - generalized surfaces of revolution: model, frames, rational sections, iterator.
+ * SPDX-License-Identifier: MIT
+ *
+ * One evaluation path: sec_eval (the section at u: scalar jets, centre jet, frame, every
+ * check of C.3) and gsr_point (the surface point and normal at a unit-circle point) serve
+ * gsr_init's sample scan, the raster walk of gsr_path_init and gsr_path_next alike.
+ *
+ * Surface normal. With the frame derivatives along arc length s of the centre
+ *     T' = k1 N + k2 B,   N' = -k1 T + w B,   B' = -k2 T - w N
+ * (k1, k2 the curvature vector of C on N and B, w the frame's twist: 0 for FIXED and RMF,
+ * the torsion for FRENET, -(N0.T) k2 / |N0 - (N0.T) T| for N0), and A = cos theta,
+ * S = sin theta, a = f_N, b = f_B:
+ *     G_theta = -a S N + b A B
+ *     G_u     = ts (1 - k1 a A - k2 b S) T + (a' A - tw b S) N + (b' S + tw a A) B
+ * (ts = f_t' |C'|, tw = ts w). The T component is ts times the sweep regularity
+ * g = 1 - k.(G - C) of C.3: g > 0 (checked at init) keeps G_u off the section plane, and
+ * n = unit(G_theta x G_u) = unit(b A uT N + a S uT B - (a S uB + b A uN) T) points away
+ * from C (its in-plane part is the ellipse's outward normal times uT > 0).
+ *
+ * Frames. All four are the projection frame of an axis a: U = unit(a - (a.T) T), V = T x U,
+ * rotated by phi: N = cos phi U + sin phi V, B = T x N. N0: a = N0, phi = 0. FIXED: a = +y,
+ * phi = -90 deg (N = -V = (T_z, 0, -T_x), B = U = +y exactly when T_y = 0, C.1). FRENET:
+ * a = C'' (U = the principal normal, V = T x U = unit(C' x C''), eq. 9; |U|^2 before
+ * normalizing over |a|^2 = |C' x C''|^2 / (|C'| |C''|)^2, the test of C.3). RMF: a = ref,
+ * phi from the table. The twist (per arc length) of the projection frame is
+ *     U'.V / |C'| = (a'.V - (a.T)(C''.V) / |C'|) / (|a - (a.T) T| |C'|)
+ * (a' = C''' for FRENET, where C''.V = 0 and it is the torsion B.C''' / |C' x C''| |C'|;
+ * 0 otherwise), plus phi' / |C'|, which cancels it for the RMF by construction.
+ *
+ * RMF table. In the projection frame of ref the RMF (N' parallel to T) is the scalar
+ * equation dphi/dt = -U'.V = (ref.T)(C''.V)/(|C'| |ref - (ref.T) T|), integrated from
+ * phi(t0) = 0 by composite Simpson over GSR_RMF_N * GSR_RMF_SUB = 512 steps (error ~ h^4;
+ * float rounding grows like sqrt(256) ulp of phi: ~2e-6 rad). Interpolation: cubic Hermite
+ * on phi with the node slopes, error <= h^4/384 max|phi''''| (~1e-7 rad for the helix of
+ * C.4 with h = 1/16), then one cp_sincos. Init compares it at every interval midpoint with
+ * the quadrature itself and rejects (CP_ERR_TOL) if the angle error times the largest
+ * section radius exceeds GSR_RMF_TOL.
+ *
+ * Rational quarter (C.2, weight w = sqrt(2)/2): on the unit square poles (1,0), (1,1),
+ * (0,1), x = ((1-v)^2 + 2w v(1-v)) / D, y = (2w v(1-v) + v^2) / D, D = (1-v)^2 + 2w v(1-v)
+ * + v^2 >= (1 + w)/2: no cancellation, a few ulp on the unit circle.
+ */
+#include "gsr.h"
+#include "cp_math.h"
+
+#define SQRT2 CP_R(1.41421356237309504880)
+#define HALF_PI CP_R(1.57079632679489661923)
+#define TAN_PI_8 CP_R(0.41421356237309504880)
+#define SAG_MARGIN CP_R(0.9)
+
+static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
+static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
+
+static cp_real dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
+{
+    return a->x * b->x + a->y * b->y + a->z * b->z;
+}
+
+static void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
+{
+    struct cp_vec3 r;
+    r.x = a->y * b->z - a->z * b->y;
+    r.y = a->z * b->x - a->x * b->z;
+    r.z = a->x * b->y - a->y * b->x;
+    *o = r;
+}
+
+/* o = p a + q b (o may alias a or b; p = 1 or q = 0 are exact) */
+static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
+                 const struct cp_vec3 *b)
+{
+    o->x = p * a->x + q * b->x;
+    o->y = p * a->y + q * b->y;
+    o->z = p * a->z + q * b->z;
+}
+
+/* Normalize v; returns its former length. */
+static cp_real unit(struct cp_vec3 *v)
+{
+    cp_real l = cp_sqrt(dot(v, v));
+    comb(v, CP_R(1.0) / l, v, CP_R(0.0), v);
+    return l;
+}
+
+/* Scalar family at x: d = f, f', f'', f'''. */
+static void sfun(const cp_real *a, cp_real x, cp_real *d)
+{
+    d[0] = a[0] + x * (a[1] + x * (a[2] + x * a[3]));
+    d[1] = a[1] + x * (CP_R(2.0) * a[2] + x * CP_R(3.0) * a[3]);
+    d[2] = CP_R(2.0) * a[2] + x * CP_R(6.0) * a[3];
+    d[3] = CP_R(6.0) * a[3];
+    if (a[GSR_B] != CP_R(0.0) || a[GSR_C] != CP_R(0.0)) {
+        cp_real w = a[GSR_W], sn, cs, p, q;
+        cp_sincos(w * x, &sn, &cs);
+        p = a[GSR_B] * sn + a[GSR_C] * cs;
+        q = w * (a[GSR_B] * cs - a[GSR_C] * sn);
+        d[0] += p;
+        d[1] += q;
+        d[2] -= w * w * p;
+        d[3] -= w * w * q;
+    }
+}
+
+/* Power-basis scalar function of centre coordinate ax (a Bezier is converted: the
+ * centre is then the cubic family with b = c = 0, no trigonometry). */
+static void centre_fn(const struct gsr_cfg *cf, unsigned ax, cp_real *a)
+{
+    const cp_real *p = cf->c[ax];
+    unsigned i;
+    for (i = 0; i < GSR_FN; i++) {
+        a[i] = p[i];
+    }
+    if (cf->centre == GSR_CENTRE_BEZIER) {
+        a[1] = CP_R(3.0) * (p[1] - p[0]);
+        a[2] = CP_R(3.0) * ((p[0] - p[1]) + (p[2] - p[1]));
+        a[3] = (p[3] - p[0]) + CP_R(3.0) * (p[1] - p[2]);
+        a[GSR_B] = CP_R(0.0);
+        a[GSR_C] = CP_R(0.0);
+    }
+}
+
+/* Centre jet at t: j[0] = C, j[1] = C', j[2] = C'', j[3] = C'''. */
+static void centre_jet(const struct gsr_cfg *cf, cp_real t, struct cp_vec3 *j)
+{
+    cp_real a[GSR_FN], d[3][4];
+    unsigned ax, i;
+    for (ax = 0; ax < 3u; ax++) {
+        centre_fn(cf, ax, a);
+        sfun(a, t, d[ax]);
+    }
+    for (i = 0; i < 4u; i++) {
+        j[i].x = d[0][i];
+        j[i].y = d[1][i];
+        j[i].z = d[2][i];
+    }
+}
+
+/* Projection frame of axis a (derivative ad) at unit tangent T (d2 = C'', sp = |C'|):
+ * U, V and the twist *w (per arc length, see top). Returns |a - (a.T) T|^2 / |a|^2 (0 or
+ * NaN: a parallel to T or zero). */
+static cp_real proj(const struct cp_vec3 *a, const struct cp_vec3 *ad, const struct cp_vec3 *T,
+                    const struct cp_vec3 *d2, cp_real sp, struct cp_vec3 *U, struct cp_vec3 *V,
+                    cp_real *w)
+{
+    cp_real pa = dot(a, T), q, wl;
+    comb(U, CP_R(1.0), a, -pa, T);
+    q = dot(U, U) / dot(a, a);
+    wl = unit(U);
+    cross(T, U, V);
+    *w = (dot(ad, V) - pa * dot(d2, V) / sp) / (wl * sp);
+    return q;
+}
+
+/* RMF angle phi at t: cubic Hermite on the table. */
+static cp_real rmf_phi(const struct gsr *g, cp_real t)
+{
+    cp_real x = (t - g->t0) * g->ih, o;
+    const cp_real *a, *b;
+    uint32_t k;
+    x = x > CP_R(0.0) ? x : CP_R(0.0);
+    k = (uint32_t)x;
+    k = k < GSR_RMF_N ? k : GSR_RMF_N - 1u;
+    x -= (cp_real)k;
+    a = g->rmf[k];
+    b = g->rmf[k + 1u];
+    o = CP_R(1.0) - x;
+    return o * o * ((CP_R(1.0) + CP_R(2.0) * x) * a[0] + x * a[1]) +
+           x * x * ((CP_R(3.0) - CP_R(2.0) * x) * b[0] - o * b[1]);
+}
+
+/* The section at u with every check of C.3 (the fold for the whole section: (k1 f_N)^2 +
+ * (k2 f_B)^2 < 1). Returns the first failed check, CP_OK otherwise (the section is filled
+ * either way). */
+static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
+{
+    const struct gsr_cfg *cf = g->cfg;
+    const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
+    struct cp_vec3 j[4], U, V;
+    cp_real f[3][4], sp, s2, q, w, cs[2] = {CP_R(1.0), CP_R(0.0)};
+    unsigned i;
+    int err = CP_OK;
+    for (i = 0; i < 3u; i++) {
+        sfun(cf->r[i], u, f[i]);
+    }
+    s->fn = f[0][0];
+    s->fb = f[1][0];
+    s->dfn = f[0][1];
+    s->dfb = f[1][1];
+    s->ft = f[2][0];
+    centre_jet(cf, f[2][0], j);
+    s->c = j[0];
+    s->t = j[1];
+    s2 = dot(&j[1], &j[1]);
+    sp = unit(&s->t);
+    s->ts = f[2][1] * sp;
+    if (g->frame == GSR_FRAME_FRENET) {
+        ax = &j[2];
+        ad = &j[3];
+    } else if (g->frame == GSR_FRAME_FIXED) {
+        ax = &ey;
+        cs[0] = CP_R(0.0);
+        cs[1] = CP_R(-1.0);
+    }
+    q = proj(ax, ad, &s->t, &j[2], sp, &U, &V, &w);
+    if (g->frame == GSR_FRAME_RMF) {
+        cp_sincos(rmf_phi(g, f[2][0]), &cs[1], &cs[0]);
+        w = CP_R(0.0);
+    }
+    comb(&s->n, cs[0], &U, cs[1], &V);
+    cross(&s->t, &s->n, &s->b);
+    s->tw = s->ts * w;
+    s->k1 = dot(&j[2], &s->n) / s2;
+    s->k2 = dot(&j[2], &s->b) / s2;
+    w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
+    if (g->frame == GSR_FRAME_FIXED && j[1].y != CP_R(0.0)) {
+        err = CP_ERR_OFF_PLANE;
+    } else if (!(f[2][0] >= CP_R(0.0) && f[2][0] <= CP_R(1.0) && f[2][1] >= CP_R(0.0))) {
+        err = CP_ERR_FT_RANGE;
+    } else if (!(s->fn > CP_R(0.0) && s->fb > CP_R(0.0))) {
+        err = CP_ERR_SECTION;
+    } else if (!(sp > GSR_EPS * g->d1)) {
+        err = CP_ERR_DEGENERATE;
+    } else if (!(q > GSR_EPS * GSR_EPS)) {
+        err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
+    } else if (!cp_isfinite(s->c.x + s->c.y + s->c.z + s->n.x + s->n.y + s->n.z + s->tw + w)) {
+        err = CP_ERR_NUMERIC;
+    } else if (!(w < CP_R(1.0))) {
+        err = CP_ERR_FOLD;
+    }
+    return err;
+}
+
+/* RMF table: phi(t) = integral of dphi/dt = -|C'| w (w the twist of the projection frame
+ * of ref, proj) from phi(t0) = 0, composite Simpson over GSR_RMF_N * GSR_RMF_SUB steps.
+ * Nodes every GSR_RMF_SUB steps store (phi, h dphi/dt). Returns the largest angle error of
+ * the Hermite interpolation at the interval midpoints against the quadrature (rad), or -1
+ * if ref is parallel to T somewhere. */
+static CP_NOINLINE cp_real rmf_build(struct gsr *g)
+{
+    const uint32_t total = GSR_RMF_N * GSR_RMF_SUB;
+    struct cp_vec3 j[4], U, V;
+    cp_real span = g->t1 - g->t0, f[3] = {CP_R(0.0), CP_R(0.0), CP_R(0.0)}, phi = CP_R(0.0),
+            pm = CP_R(0.0), worst = CP_R(0.0), w, sp;
+    uint32_t i;
+    g->ih = (cp_real)GSR_RMF_N / span;
+    for (i = 0; i <= total; i++) {
+        centre_jet(g->cfg, g->t0 + span * ((cp_real)i / (cp_real)total), j);
+        sp = unit(&j[1]);
+        if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &U, &V, &w) > GSR_EPS * GSR_EPS)) {
+            return CP_R(-1.0);
+        }
+        f[0] = f[1];
+        f[1] = f[2];
+        f[2] = -w * sp;
+        if (i > 0u && i % 2u == 0u) {
+            phi += span / (cp_real)(3u * total) * (f[0] + CP_R(4.0) * f[1] + f[2]);
+        }
+        if (i % GSR_RMF_SUB == GSR_RMF_SUB / 2u) {
+            pm = phi;
+        } else if (i % GSR_RMF_SUB == 0u) {
+            g->rmf[i / GSR_RMF_SUB][0] = phi;
+            g->rmf[i / GSR_RMF_SUB][1] = f[2] / g->ih;
+            if (i > 0u) {
+                w = cp_fabs(rmf_phi(g, g->t0 + span * ((cp_real)(i - GSR_RMF_SUB / 2u) /
+                                                        (cp_real)total)) - pm);
+                worst = w > worst ? w : worst;
+            }
+        }
+    }
+    return worst;
+}
+
+int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
+{
+    cp_real a[GSR_FN], worst = CP_R(0.0);
+    struct gsr_sec s;
+    struct cp_vec3 bp = zero;
+    uint32_t k, i;
+    int err;
+    if (g == NULL || cf == NULL || cf->centre > GSR_CENTRE_BEZIER ||
+        cf->frame > GSR_FRAME_RMF || cf->section > GSR_SECTION_TRIG) {
+        return CP_ERR_INVAL;
+    }
+    g->cfg = cf;
+    g->frame = cf->frame;
+    g->section = cf->section;
+    g->d1 = CP_R(0.0);
+    for (k = 0; k < 7u; k++) {
+        const cp_real *f = k < 3u ? cf->c[k] : (k < 6u ? cf->r[k - 3u] : &cf->ref.x);
+        for (i = 0; i < (k < 6u ? GSR_FN : 3u); i++) {
+            if (!cp_isfinite(f[i])) {
+                return CP_ERR_NONFINITE;
+            }
+            if (!(cp_fabs(f[i]) <= (i == GSR_W && k < 6u ? GSR_W_MAX : GSR_COEF_MAX))) {
+                return CP_ERR_RANGE;
+            }
+        }
+        if (k < 3u) { /* bound of |C'| over [0, 1], the scale of the degeneracy tests */
+            centre_fn(cf, k, a);
+            g->d1 += cp_fabs(a[1]) + CP_R(2.0) * cp_fabs(a[2]) + CP_R(3.0) * cp_fabs(a[3]) +
+                     cp_fabs(a[GSR_W]) * (cp_fabs(a[GSR_B]) + cp_fabs(a[GSR_C]));
+        }
+    }
+    if (cf->frame >= GSR_FRAME_N0 && !(dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
+        return CP_ERR_RANGE;
+    }
+    sfun(cf->r[2], CP_R(0.0), a);
+    g->t0 = a[0];
+    sfun(cf->r[2], CP_R(1.0), a);
+    g->t1 = a[0];
+    if (!(g->t1 > g->t0 && g->t0 >= CP_R(0.0) && g->t1 <= CP_R(1.0))) {
+        return CP_ERR_FT_RANGE;
+    }
+    if (cf->frame == GSR_FRAME_RMF) {
+        worst = rmf_build(g);
+        if (worst < CP_R(0.0)) {
+            return CP_ERR_FRAME_REF;
+        }
+    }
+    g->rmax = CP_R(0.0);
+    for (k = 0; k <= GSR_SAMPLES; k++) {
+        err = sec_eval(g, (cp_real)k / (cp_real)GSR_SAMPLES, &s);
+        if (err != CP_OK) {
+            return err;
+        }
+        g->rmax = s.fn > g->rmax ? s.fn : g->rmax;
+        g->rmax = s.fb > g->rmax ? s.fb : g->rmax;
+        if (!(dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
+            return cf->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
+        }
+        bp = s.b;
+    }
+    return worst * g->rmax <= GSR_RMF_TOL ? CP_OK : CP_ERR_TOL;
+}
+
+void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s)
+{
+    (void)sec_eval(g, u, s);
+}
+
+void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
+               struct cp_vec3 *n)
+{
+    cp_real ax = s->fn * cx, by = s->fb * cy;
+    cp_real ut = s->ts * (CP_R(1.0) - s->k1 * ax - s->k2 * by);
+    cp_real un = s->dfn * cx - s->tw * by;
+    cp_real ub = s->dfb * cy + s->tw * ax;
+    comb(p, CP_R(1.0), &s->c, ax, &s->n);
+    comb(p, CP_R(1.0), p, by, &s->b);
+    comb(n, s->fb * cx * ut, &s->n, s->fn * cy * ut, &s->b);
+    comb(n, CP_R(1.0), n, -(s->fn * cy * ub + s->fb * cx * un), &s->t);
+    (void)unit(n);
+}
+
+void gsr_unit_rational(cp_real psi, cp_real *cx, cp_real *cy)
+{
+    /* quarter by truncation of psi + 2 >= 0 (no floor call); where rounding puts psi a
+     * hair into the next quarter, v is a hair outside [0, 1]: the rational quarter extends
+     * smoothly and stays on the circle there */
+    int32_t qi = (int32_t)(psi + CP_R(2.0)) - 2;
+    cp_real v, w, m, a, b, id, x, y;
+    uint32_t r;
+    qi = qi < 1 ? qi : 1; /* psi = 2: quarter 1 at v = 1 */
+    v = psi - (cp_real)qi;
+    w = CP_R(1.0) - v;
+    m = SQRT2 * v * w; /* 2 (sqrt(2)/2) v (1 - v) */
+    a = w * w;
+    b = v * v;
+    id = CP_R(1.0) / (a + m + b);
+    x = (a + m) * id;
+    y = (m + b) * id;
+    for (r = (uint32_t)qi & 3u; r > 0u; r--) { /* quarter q: q turns of 90 deg */
+        a = x;
+        x = -y;
+        y = a;
+    }
+    *cx = x;
+    *cy = y;
+}
+
+cp_real gsr_psi(cp_real th)
+{
+    cp_real q = cp_floor(th / HALF_PI), sn, cs;
+    q = q < CP_R(1.0) ? q : CP_R(1.0); /* th = pi: quarter 1 at v = 1 */
+    cp_sincos(CP_R(0.5) * ((th - q * HALF_PI) - CP_R(0.5) * HALF_PI), &sn, &cs);
+    return q + CP_R(0.5) * (CP_R(1.0) + sn / (cs * TAN_PI_8));
+}
+
+/* ---- iterator ---------------------------------------------------------------------- */
+
+/* Section parameter of eccentric angle th: th itself (TRIG) or psi (RATIONAL). */
+static cp_real sigma_of(const struct gsr_path *it, cp_real th)
+{
+    return it->g.section == GSR_SECTION_TRIG ? th : gsr_psi(th);
+}
+
+
+/* Fixed coordinate of line j (LINES: sig of theta_j, CIRCLES: u = j (link + 1) / gsteps). */
+static cp_real fixed(const struct gsr_path *it, uint32_t j)
+{
+    uint32_t lk = (uint32_t)it->link + 1u;
+    return it->mode == TOOLPATH_LINES
+               ? sigma_of(it, it->v0 + (cp_real)j * it->dv)
+               : (cp_real)(j * lk) / (cp_real)(it->n > 1u ? (uint32_t)(it->n - 1u) * lk : 1u);
+}
+
+/* Where point k is: x[0] = u, x[1] = the section parameter sig; line (-1 on a link) and
+ * index. Both modes are one raster: line j has a FIXED coordinate and a RUNNING one (LINES:
+ * u = 0..1, CIRCLES: sig = s0..s1) at i / steps; link point kk runs the fixed coordinate
+ * from line j's value to line j + 1's at fraction kk / (link + 1), at the running end
+ * where line j stopped. */
+static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, int32_t *line,
+                   uint32_t *index)
+{
+    uint32_t st = it->steps, lk = (uint32_t)it->link + 1u, j = k / (st + lk), r = k % (st + lk);
+    uint32_t back = j & 1u, c = it->mode == TOOLPATH_LINES, i = back ? st - r : r;
+    cp_real a0 = c ? CP_R(0.0) : it->s0, a1 = c ? CP_R(1.0) : it->s1, f = fixed(it, j);
+    *line = (int32_t)j;
+    if (r > st) { /* link point r - st */
+        *line = -1;
+        i = back ? 0u : st;
+        f += (fixed(it, j + 1u) - f) * ((cp_real)(r - st) / (cp_real)lk);
+    }
+    *index = r > st ? r - st : i;
+    x[c] = f;
+    x[1u - c] = a0 + (a1 - a0) * ((cp_real)i / (cp_real)st);
+}
+
+/* Emitted point at x = (u, sig) (surface, tool centre G + r n, or tip) and normal, with
+ * every check: C.3 on a new section, the fold at the emitted tool centre (1 - k.(P - C) >
+ * 0), finiteness. The section is cached by its u and the unit-circle point by its sig
+ * (bit equality: both are the same computation whenever they are equal; gsr_path_seek
+ * resets the keys), so a ring costs one section and then only its unit
+ * points, and a line one unit point. */
+static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
+{
+    const struct gsr_sec *s = &it->sec;
+    cp_real g;
+    int err = CP_OK;
+    if (x[0] != it->su) {
+        err = sec_eval(&it->g, x[0], &it->sec);
+        it->su = x[0];
+    }
+    if (x[1] != it->cs) {
+        if (it->g.section == GSR_SECTION_TRIG) {
+            cp_sincos(x[1], &it->cc[1], &it->cc[0]);
+        } else {
+            gsr_unit_rational(x[1], &it->cc[0], &it->cc[1]);
+        }
+        it->cs = x[1];
+    }
+    gsr_point(s, it->cc[0], it->cc[1], &pt->p, &pt->n);
+    comb(&pt->p, CP_R(1.0), &pt->p, it->tool_r, &pt->n);
+    if (it->output == TOOLPATH_OUT_TIP) {
+        pt->p.z -= it->tool_r;
+    }
+    g = CP_R(1.0) - s->k1 * (s->fn * it->cc[0] + it->tool_r * dot(&pt->n, &s->n)) -
+        s->k2 * (s->fb * it->cc[1] + it->tool_r * dot(&pt->n, &s->b));
+    if (err == CP_OK && !cp_isfinite(pt->p.x + pt->p.y + pt->p.z + g)) {
+        err = CP_ERR_NUMERIC;
+    }
+    return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;
+}
+
+/* Walk the whole stream at twice its resolution: every point and every segment midpoint
+ * (in (u, sig), along which a segment runs linearly). sag[0]: max midpoint sagitta of the
+ * segments within a line/ring, sag[1]: of the link segments. Work: 2 count points, fixed
+ * before the loop. */
+static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
+{
+    struct toolpath_pt a, b, m;
+    cp_real x[2], px[2] = {CP_R(0.0), CP_R(0.0)};
+    int32_t line, pline = -1;
+    uint32_t k, idx;
+    int err = gsr_path_seek(it, 0u);
+    sag[0] = sag[1] = CP_R(0.0);
+    a.p = zero;
+    for (k = 0; k < it->count && err == CP_OK; k++) {
+        locate(it, k, x, &line, &idx);
+        err = pt_at(it, x, &b);
+        if (err == CP_OK && k > 0u) {
+            unsigned c = (line >= 0 && line == pline) ? 0u : 1u;
+            px[0] = CP_R(0.5) * (px[0] + x[0]);
+            px[1] = CP_R(0.5) * (px[1] + x[1]);
+            err = pt_at(it, px, &m);
+            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &a.p);
+            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &b.p);
+            px[0] = cp_sqrt(dot(&m.p, &m.p));
+            sag[c] = px[0] > sag[c] ? px[0] : sag[c];
+        }
+        a = b;
+        pline = line;
+        px[0] = x[0];
+        px[1] = x[1];
+    }
+    return err;
+}
+
+/* Count m (steps, or link + 1 segments) grown for a measured sagitta (~ 1/m^2): rounded
+ * up with 5% headroom; 0 if m is already at max. */
+static uint32_t grow(uint32_t m, cp_real sag, cp_real tol, uint32_t max)
+{
+    cp_real want = (cp_real)m * cp_sqrt(sag / (SAG_MARGIN * tol)) * CP_R(1.05);
+    if (m >= max) {
+        return 0u;
+    }
+    want = want < (cp_real)max ? want : (cp_real)max;
+    want = cp_ceil(want);
+    return want > (cp_real)m ? (uint32_t)want : m + 1u;
+}
+
+static int validate(const struct toolpath_cfg *c)
+{
+    if (c->mode > TOOLPATH_CIRCLES || c->output > TOOLPATH_OUT_TIP ||
+        (c->output == TOOLPATH_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
+        return CP_ERR_INVAL;
+    }
+    if (!cp_isfinite(c->u0 + c->u1 + c->tol + c->tool_r)) {
+        return CP_ERR_NONFINITE;
+    }
+    if (c->n > CP_MAX_LINES || c->steps > CP_MAX_STEPS) {
+        return CP_ERR_TOO_MANY;
+    }
+    if (c->n == 0u || !(cp_fabs(c->u0) <= CP_PI && cp_fabs(c->u1) <= CP_PI) ||
+        (c->u0 == c->u1 && c->n > 1u) ||
+        (c->tol != CP_R(0.0) && !(c->tol >= CP_R(1e-5) && c->tol <= CP_R(10.0))) ||
+        (c->steps == 0u && c->tol == CP_R(0.0)) ||
+        (c->link != TOOLPATH_LINK_AUTO && c->link > CP_MAX_LINK) || c->tool_r > GSR_COEF_MAX) {
+        return CP_ERR_RANGE;
+    }
+    return c->tool_r < CP_R(0.0) ? CP_ERR_TOOL : CP_OK;
+}
+
+int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct toolpath_cfg *rc)
+{
+    cp_real tol, sag[2];
+    uint32_t st, lk;
+    int round, err;
+    if (it == NULL || rc == NULL) {
+        return CP_ERR_INVAL;
+    }
+    it->count = 0;
+    err = gsr_init(&it->g, geom);
+    if (err == CP_OK) {
+        err = validate(rc);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    it->mode = rc->mode;
+    it->output = rc->output;
+    it->n = rc->n;
+    it->tool_r = rc->tool_r;
+    it->v0 = rc->u0;
+    it->dv = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : CP_R(0.0);
+    it->s0 = sigma_of(it, rc->u0);
+    it->s1 = sigma_of(it, rc->u1);
+    tol = rc->tol > CP_R(0.0) ? rc->tol : CP_R(1e-3);
+    st = rc->steps ? rc->steps : 8u;
+    lk = (rc->link != TOOLPATH_LINK_AUTO && it->n > 1u) ? rc->link : 0u;
+    for (round = 0; err == CP_OK && round <= GSR_WALK_ROUNDS; round++) {
+        int fs, fl;
+        it->steps = (uint16_t)st;
+        it->link = (uint16_t)lk;
+        it->count = (uint32_t)it->n * (st + 1u) + (uint32_t)(it->n - 1u) * lk;
+        err = walk(it, sag);
+        fs = rc->steps == 0u && sag[0] > SAG_MARGIN * tol;
+        fl = rc->link == TOOLPATH_LINK_AUTO && it->n > 1u && sag[1] > SAG_MARGIN * tol;
+        if (err == CP_OK && !fs && !fl) {
+            return gsr_path_seek(it, 0u);
+        }
+        if (fs) {
+            st = grow(st, sag[0], tol, CP_MAX_STEPS);
+        }
+        if (fl) {
+            lk = grow(lk + 1u, sag[1], tol, CP_MAX_LINK + 1u) - 1u;
+        }
+        if (err == CP_OK && (round == GSR_WALK_ROUNDS || st == 0u || lk > CP_MAX_LINK)) {
+            err = CP_ERR_TOL;
+        }
+    }
+    it->count = 0;
+    return err;
+}
+
+uint32_t gsr_path_count(const struct gsr_path *it)
+{
+    return it->count;
+}
+
+int gsr_path_seek(struct gsr_path *it, uint32_t k)
+{
+    if (k > it->count) {
+        return CP_ERR_RANGE;
+    }
+    it->k = k;
+    it->su = CP_R(-1.0); /* u >= 0: no section cached */
+    it->cs = CP_R(8.0);  /* |sig| <= 4: no unit point cached */
+    return CP_OK;
+}
+
+int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt)
+{
+    cp_real x[2];
+    int32_t line;
+    uint32_t idx;
+    int err;
+    if (it->k >= it->count) {
+        return CP_ERR_DONE;
+    }
+    locate(it, it->k, x, &line, &idx);
+    err = pt_at(it, x, pt);
+    pt->t = x[0];
+    pt->line = (int16_t)line;
+    pt->index = (uint16_t)idx;
+    it->k += err == CP_OK;
+    return err;
+}
+
+#if CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 800u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 640u, gsr_cfg_fits_budget);
+#else
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 400u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 320u, gsr_cfg_fits_budget);
+#endif

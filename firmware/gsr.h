@@ -1,0 +1,234 @@
+/* gsr.h - generalized surfaces of revolution (Grigoriev, seed 003): an ellipse swept along a
+ * space curve in its normal plane, with exact rational quarters and four frames.
+ * SPDX-License-Identifier: MIT
+ *
+ * Geometry (../shared/docs/MATH-seeds-2-3-4.md part C, which overrides the paper):
+ *
+ *     t = f_t(u),  G(u, theta) = C(t) + f_N(u) cos(theta) N(t) + f_B(u) sin(theta) B(t)
+ *
+ * u in [0, 1] runs along the surface, theta is the ECCENTRIC angle of the section
+ * (theta = 0 on +N, theta = 90 deg on +B), (N, B, T) is right-handed: N x B = T.
+ *
+ * Scalar family (every coordinate of C, and f_N, f_B, f_t): 7 numbers
+ *     f(x) = a0 + a1 x + a2 x^2 + a3 x^3 + b sin(w x) + c cos(w x)
+ * (w in radians per unit x; the protocol takes degrees). Jets are exact to the 3rd
+ * derivative. The sinusoid costs one cp_sincos per evaluation when b or c != 0; a
+ * function with b = c = 0 (e.g. every Bezier coordinate) costs no trigonometry.
+ *
+ * Centre C(t), t in [0, 1]: GSR_CENTRE_POLY (c[axis] = the 7 numbers of x, y, z) or
+ * GSR_CENTRE_BEZIER (c[axis][i] = coordinate `axis` of control point i, i = 0..3).
+ *
+ * Frames (C.1-C.3):
+ *   GSR_FRAME_FIXED   B = (0, 1, 0), N = B x T = (T_z, 0, -T_x) (corrected eq. 7); the centre
+ *                     must have T_y = 0 identically (y constant; T_y must be exactly 0 at
+ *                     every init sample and every walked point)
+ *   GSR_FRAME_FRENET  B = unit(C' x C''), N = B x T (eq. 9; computed as the projection of
+ *                     C'' on the normal plane, gsr.c)
+ *   GSR_FRAME_N0      B = unit(T x N0), N = B x T = the projection of N0 on the normal
+ *                     plane (eq. 10; N0 = ref)
+ *   GSR_FRAME_RMF     rotation-minimizing frame (not in the paper): N(t_min) = the projection
+ *                     of ref on the normal plane, then N' = -(N . T') T. Stored as the angle
+ *                     phi(t) of N in the closed-form projection frame (U, V) of ref (U =
+ *                     unit(ref - (ref.T) T), V = T x U; so ref must never be parallel to a
+ *                     tangent: CP_ERR_FRAME_REF), where the RMF equation is the scalar
+ *                     dphi/dt = (ref.T)(C''.V) / (|C'| |ref - (ref.T) T|): made at init by
+ *                     composite Simpson quadrature, GSR_RMF_N x GSR_RMF_SUB steps over
+ *                     [f_t(0), f_t(1)], kept as (phi, h dphi/dt) at GSR_RMF_N + 1 nodes. A
+ *                     section interpolates phi by cubic Hermite and takes one cp_sincos (no
+ *                     state: any seek(k) is exact). Init verifies the interpolation at every
+ *                     interval midpoint against the quadrature.
+ *
+ * Sections (C.2): GSR_SECTION_TRIG (cos/sin of theta by cp_sincos) or GSR_SECTION_RATIONAL
+ * (the exact rational quadratic quarter, weight sqrt(2)/2: no trigonometry). In the rational
+ * form a section position is psi = q + v in [-2, 2]: quarter q = floor(psi) (mod 4), v =
+ * psi - q in [0, 1]; gsr_psi gives psi of an eccentric angle by the closed form
+ * v(theta) = (1 + tan((theta' - pi/4)/2) / tan(pi/8)) / 2, theta' = theta - q pi/2.
+ *
+ * Raster (struct toolpath_cfg, the same request as the canal; u0, u1 = v0, v1 in radians,
+ * |v| <= pi):
+ *   TOOLPATH_LINES    n longitudinal lines at EVEN eccentric angles theta_j = v0 + j (v1 -
+ *                     v0)/(n - 1) (rational form: psi(theta_j), one tangent per line), each
+ *                     with steps + 1 points at u_i = i / steps; zigzag (odd lines run u = 1
+ *                     -> 0); consecutive lines are linked by `link` points along the ring at
+ *                     the line end (uniform in the section parameter).
+ *   TOOLPATH_CIRCLES  n rings (sections) at u_c = c (link + 1) / gsteps, gsteps = (n - 1)
+ *                     (link + 1) (n = 1: u = 0), each with steps + 1 points from v0 to v1
+ *                     (zigzag), uniform in the section parameter: the eccentric angle
+ *                     (TRIG) or psi (RATIONAL: no trigonometry per point; the angle step
+ *                     then varies by the quarter's speed ratio 1.17, C.2). Consecutive rings
+ *                     are linked by `link` points along the line at v1 (even c) / v0 (odd c).
+ *   count = n (steps + 1) + (n - 1) link. toolpath_pt: p the emitted position, n the unit
+ *   OUTWARD surface normal (G_theta x G_u, pointing away from C), t = u (surface parameter),
+ *   line = line/ring index (-1 on links), index = point index in it (links: 1..link).
+ *   Tool (TOOL BALL r): the tool is OUTSIDE the surface (pipes, handles, nozzles):
+ *   TOOLPATH_OUT_CENTRE streams G + r n, TOOLPATH_OUT_TIP that centre - r z. Where f_t' = 0
+ *   (G2 of C.4 at u = 0, 1) the section plane is tangent to the surface and n = +-T; if its
+ *   sign changes along the ring there the tool centre jumps and init fails (CP_ERR_TOL).
+ * Step counts: given (steps, link), or derived from tol: rounded up, then the whole stream
+ * is walked at twice its resolution (every point and every segment midpoint) and the
+ * measured midpoint sagitta must be <= 0.9 tol (lines/rings and links separately, up to
+ * GSR_WALK_ROUNDS refinements). The same walk checks that the sweep does not fold at any
+ * point or midpoint, for the tool centre too.
+ *
+ * Units: mm, radians, u and t dimensionless. Everything is validated by gsr_init /
+ * gsr_path_init; the step functions cannot fail afterwards.
+ */
+#ifndef GSR_H
+#define GSR_H
+
+#include "toolpath.h"
+
+enum gsr_centre_kind {
+    GSR_CENTRE_POLY = 0,  /* c[axis][0..6] = a0 a1 a2 a3 b c w of x(t), y(t), z(t) */
+    GSR_CENTRE_BEZIER = 1 /* c[axis][i] = coordinate of control point i (i < 4), rest unused */
+};
+
+enum gsr_frame_kind {
+    GSR_FRAME_FIXED = 0,  /* B = +y (centre curve in a plane y = const) */
+    GSR_FRAME_FRENET = 1, /* Frenet */
+    GSR_FRAME_N0 = 2,     /* N = projection of ref on the normal plane */
+    GSR_FRAME_RMF = 3     /* rotation-minimizing, N(t_min) = projection of ref */
+};
+
+enum gsr_section_kind {
+    GSR_SECTION_RATIONAL = 0, /* exact rational quarters (default: no trig per point) */
+    GSR_SECTION_TRIG = 1      /* cos/sin of the eccentric angle */
+};
+
+/* Scalar functions: numbers per function, and the index of each number. */
+#define GSR_FN 7
+#define GSR_B 4 /* b of b sin(w x) */
+#define GSR_C 5 /* c of c cos(w x) */
+#define GSR_W 6 /* w, radians per unit x */
+
+/* Limits checked by gsr_init. */
+#define GSR_COEF_MAX CP_R(1.0e4)        /* |a_i|, |b|, |c|, |Bezier coordinate|, |ref|, mm */
+#define GSR_W_MAX CP_R(402.1238596594935) /* |w| <= 64 turns per unit x (23040 deg) */
+#define GSR_SAMPLES 256u                /* init scan: u = k / GSR_SAMPLES, k = 0..256 */
+#define GSR_RMF_N 16u                   /* RMF table intervals over [f_t(0), f_t(1)] */
+#define GSR_RMF_SUB 32u                 /* quadrature steps per table interval (even) */
+#define GSR_RMF_TOL CP_R(2.0e-4)        /* max RMF interpolation error x max radius, mm */
+#define GSR_WALK_ROUNDS 4               /* step-count refinements from the measured sagitta */
+/* Degeneracy thresholds (C.3: 1e-9). The float build cannot resolve 1e-9: C' x C'' of a
+ * straight piece is ~1e-7 relative there, so float uses 1e-5 (documented difference). */
+#if CP_REAL_DOUBLE
+#define GSR_EPS CP_R(1.0e-9)
+#else
+#define GSR_EPS CP_R(1.0e-5)
+#endif
+
+/* The geometry (plain data; filled by the protocol commands, job_gsr.c). */
+struct gsr_cfg {
+    uint8_t centre;           /* enum gsr_centre_kind */
+    uint8_t frame;            /* enum gsr_frame_kind */
+    uint8_t section;          /* enum gsr_section_kind */
+    uint8_t set;              /* protocol bookkeeping (job_gsr.c), ignored by gsr_init */
+    cp_real c[3][GSR_FN];     /* centre: x, y, z (see enum gsr_centre_kind), mm; w rad */
+    cp_real r[3][GSR_FN];     /* f_N(u), f_B(u) (mm), f_t(u) (dimensionless); w rad */
+    struct cp_vec3 ref;       /* N0 (FRAME_N0) or the RMF start reference, any length > 0 */
+};
+
+/* The validated model. Keeps a pointer to the cfg, which must outlive it unchanged. */
+struct gsr {
+    const struct gsr_cfg *cfg;
+    uint8_t frame, section;
+    cp_real t0, t1;           /* f_t(0), f_t(1): the t range of the centre, t0 < t1 */
+    cp_real d1;               /* bound of |C'| from the coefficients (scale of the checks) */
+    cp_real rmax;             /* max(f_N, f_B) over the init samples, mm */
+    cp_real ih;               /* RMF: GSR_RMF_N / (t1 - t0) */
+    cp_real rmf[GSR_RMF_N + 1u][2]; /* RMF: phi (rad), h dphi/dt at node k (phi: angle of N in
+                                       the projection frame of ref) */
+};
+
+/* Everything at one u that the points of its section need. */
+struct gsr_sec {
+    struct cp_vec3 c, t, n, b; /* C(t) (mm); unit tangent T, section axes N and B */
+    cp_real fn, fb;            /* f_N(u), f_B(u), mm */
+    cp_real dfn, dfb;          /* d f_N / du, d f_B / du, mm */
+    cp_real ts;                /* f_t'(u) |C'(t)|: centre arc length per unit u, mm */
+    cp_real tw;                /* ts * frame twist (N' . B per arc length): rad per unit u */
+    cp_real k1, k2;            /* curvature vector of C along N and B, 1/mm */
+    cp_real ft;                /* t = f_t(u) */
+};
+
+/* Validate the geometry and build the frame (RMF table). Errors:
+ *   CP_ERR_INVAL       g or cfg NULL, a kind out of range
+ *   CP_ERR_NONFINITE   a number is NaN or Inf
+ *   CP_ERR_RANGE       |number| > GSR_COEF_MAX, |w| > GSR_W_MAX, ref = 0 (N0, RMF)
+ *   CP_ERR_OFF_PLANE   FIXED frame with y(t) not constant (T_y != 0 at a sample)
+ *   CP_ERR_FT_RANGE    f_t(u) outside [0, 1] or f_t' < 0 at a sample (decreasing), or
+ *                      f_t(1) <= f_t(0) (f_t' = 0 at isolated u is allowed: G2 of C.4)
+ *   CP_ERR_SECTION     f_N <= 0 or f_B <= 0 at a sample
+ *   CP_ERR_DEGENERATE  |C'(t)| <= GSR_EPS * (bound of |C'|) at a sample
+ *   CP_ERR_FRENET      FRENET with |C' x C''| <= GSR_EPS |C'||C''|, or B flipping between
+ *                      samples (an inflection between them)
+ *   CP_ERR_FRAME_REF   N0 with |T x N0| <= GSR_EPS |N0| (or flipping between samples); RMF
+ *                      with T parallel to ref at t_min, or no axis of the 7 at >= 14 deg
+ *                      from every tangent
+ *   CP_ERR_TOL         RMF table interpolation error x max radius > GSR_RMF_TOL
+ *   CP_ERR_FOLD        the sweep folds somewhere on a full section: 1 - k.(G - C) <= 0,
+ *                      i.e. (k1 f_N)^2 + (k2 f_B)^2 >= 1 at a sample
+ *   CP_ERR_NUMERIC     a non-finite value appeared
+ * Samples: u = k / GSR_SAMPLES, k = 0..GSR_SAMPLES (the raster walk of gsr_path_init
+ * checks every streamed point and midpoint again). */
+CP_MUST_CHECK int gsr_init(struct gsr *g, const struct gsr_cfg *cfg);
+
+/* The section at u in [0, 1] (after a successful gsr_init). */
+void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s);
+
+/* Surface point p (mm) and unit outward normal n of section s at unit-circle
+ * coordinates (cx, cy) = (cos theta, sin theta). */
+void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
+               struct cp_vec3 *n);
+
+/* Rational quarter: unit-circle coordinates of section position psi in [-2, 2] (see
+ * top). Exact conic points: (cx^2 + cy^2 - 1) is a few ulp; no trigonometry. */
+void gsr_unit_rational(cp_real psi, cp_real *cx, cp_real *cy);
+
+/* psi of eccentric angle theta in [-pi, pi] (closed form v(theta), one cp_sincos). */
+cp_real gsr_psi(cp_real theta);
+
+/* ---- the toolpath iterator (path.h) ---- */
+struct gsr_path {
+    struct gsr g;
+    uint8_t mode, output;    /* enum toolpath_mode, enum toolpath_output */
+    uint16_t n, steps, link; /* lines/rings, steps per line/ring, link points */
+    uint32_t count, k;       /* total points, points emitted (next k) */
+    cp_real tool_r;          /* mm */
+    cp_real s0, s1;          /* section parameter (theta or psi) of v0 and v1 */
+    cp_real v0, dv;          /* LINES: theta_j = v0 + j dv, radians */
+    cp_real su;              /* u of the cached section (-1: none) */
+    cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */
+    struct gsr_sec sec;      /* the cached section */
+};
+
+/* Validate geom (gsr_init) and the raster, derive and verify the step counts, walk the
+ * whole stream for folds. Errors: every gsr_init code, plus
+ *   CP_ERR_INVAL     mode/output out of range, tool radius with OUT_SURFACE
+ *   CP_ERR_NONFINITE u0, u1, tol or tool_r NaN/Inf
+ *   CP_ERR_RANGE     |v| > pi, v0 == v1 with n > 1, n == 0, tol outside [1e-5, 10] mm,
+ *                    steps == 0 with tol == 0, link > CP_MAX_LINK, tool_r > GSR_COEF_MAX
+ *   CP_ERR_TOO_MANY  n > CP_MAX_LINES, steps > CP_MAX_STEPS
+ *   CP_ERR_TOOL      tool_r < 0
+ *   CP_ERR_TOL       tol not met within CP_MAX_STEPS / CP_MAX_LINK / GSR_WALK_ROUNDS
+ *   CP_ERR_FOLD      a streamed point or midpoint (or its tool centre) where the sweep folds,
+ *                    or whose section folds somewhere (as gsr_init, at every walked u)
+ *   CP_ERR_NUMERIC   a non-finite point
+ * Returns CP_OK; then gsr_path_next yields exactly gsr_path_count() points. */
+CP_MUST_CHECK int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom,
+                                const struct toolpath_cfg *raster);
+
+/* Total points of the path. */
+uint32_t gsr_path_count(const struct gsr_path *it);
+
+/* Next point: CP_OK, or CP_ERR_DONE after the last (any other code: a check of the init
+ * walk failed, which is impossible after it since every point is the same computation;
+ * kept as a guard, the position does not advance). */
+int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt);
+
+/* Restart at point k (0 <= k <= count; CP_ERR_RANGE otherwise): the next gsr_path_next
+ * yields bit for bit what it yielded at k (every point is a function of k alone; the
+ * caches are keyed and refilled by the same code). */
+CP_MUST_CHECK int gsr_path_seek(struct gsr_path *it, uint32_t k);
+
+#endif /* GSR_H */

@@ -1,0 +1,88 @@
+/* job_channel.c - protocol commands of SURFACE CHANNEL (docs/PROTOCOL.md, "Channel").
+ * SPDX-License-Identifier: MIT
+ *
+ *   SECTION a b n cx cy cz psi theta phi   append a superellipse section: semi-axes a, b
+ *                             (mm), exponent n, centre (mm), orientation R = T(psi) T(theta)
+ *                             T(phi) (degrees, |angle| <= 360; B5 reading)
+ *   AXES x1 x2 x3 z1 z2 z3    replace the last section's orientation by explicit rows: local x
+ *                             axis (the a axis) and section normal (unit, orthogonal, 1e-4)
+ *   SECTIONS CLEAR            forget the sections
+ * Each command checks its section at once (channel_section_check: error:6 range, 28 a or
+ * b <= 0, 32 n < 1, 36 a = b with n != 2); RUN checks the geometry (channel_path_init).
+ */
+#include "job.h"
+#include "parse.h"
+
+#define JOB_HAVE_SECTION JOB_HAVE_CHANNEL_SECTION
+
+CP_STATIC_ASSERT((JOB_HAVE_SECTION & ~JOB_HAVE_CHANNEL_MASK) == 0u, channel_bit_in_mask);
+
+void job_channel_defaults(union path_geom *g)
+{
+    g->channel.count = 0u;
+}
+
+int job_channel_command(struct job *j, const struct job_line *l)
+{
+    static const char *const kw[3] = {"SECTION", "AXES", "SECTIONS"};
+    static const uint8_t na[3] = {9u, 6u, 1u}; /* arguments */
+    struct channel_cfg *g;
+    struct channel_section s;
+    cp_real v[9], *sv = (cp_real *)&s; /* 12 reals (static assert in channel.c) */
+    unsigned c, i;
+    int st;
+    for (c = 0; c < 3u && (l->nt == 0u || !parse_is(l->s + l->st[0], l->ln[0], kw[c])); c++) {
+    }
+    if (j == NULL || c == 3u) {
+        return j == NULL ? (c < 3u) : JOB_NOT_MINE;
+    }
+    g = &j->geom.channel;
+    if (l->nt != 1u + na[c]) {
+        return CP_ST_BAD_ARITY;
+    }
+    if (c == 2u) { /* SECTIONS CLEAR */
+        if (!parse_is(l->s + l->st[1], l->ln[1], "CLEAR")) {
+            return CP_ST_BAD_KEYWORD;
+        }
+        g->count = 0u;
+        j->have &= (uint16_t)~JOB_HAVE_SECTION;
+        return CP_ST_OK;
+    }
+    st = job_numbers(l, 1u, na[c], v);
+    if (st != CP_ST_OK) {
+        return st;
+    }
+    if (c == 0u) { /* SECTION: a b n, centre, angles */
+        if (g->count >= CP_MAX_SECTIONS) {
+            return CP_ST_TOO_MANY;
+        }
+        for (i = 6u; i < 9u; i++) {
+            if (cp_fabs(v[i]) > CP_R(360.0)) {
+                return CP_ST_OUT_OF_RANGE;
+            }
+        }
+        for (i = 0; i < 6u; i++) {
+            sv[i] = v[i];
+        }
+        channel_euler(&s, v[6] * CP_DEG2RAD, v[7] * CP_DEG2RAD, v[8] * CP_DEG2RAD,
+                      CHANNEL_ORDER_SPIN_FIRST);
+    } else { /* AXES: rows x, z of the last section */
+        if (g->count == 0u) {
+            return CP_ST_TOO_FEW; /* AXES needs a SECTION to apply to */
+        }
+        s = g->s[g->count - 1u];
+        for (i = 0; i < 6u; i++) {
+            sv[6u + i] = v[i];
+        }
+    }
+    st = channel_section_check(&s);
+    if (st != CP_OK) {
+        return job_status_of(st);
+    }
+    if (c == 0u) {
+        g->count++;
+    }
+    g->s[g->count - 1u] = s;
+    j->have |= JOB_HAVE_SECTION;
+    return CP_ST_OK;
+}

@@ -1,0 +1,152 @@
+/* job_gsr.c - protocol commands of SURFACE GSR (docs/PROTOCOL.md, "Generalized surfaces of
+ * revolution"); the geometry is struct gsr_cfg in job->geom.gsr (gsr.h).
+ * SPDX-License-Identifier: MIT
+ *
+ *   CENTER X|Y|Z a0 a1 a2 a3 b c w   a centre coordinate a0 + a1 t + a2 t^2 + a3 t^3
+ *                                    + b sin(w t) + c cos(w t), w in degrees per unit t;
+ *                                    coordinates not given are 0 (switches a Bezier off)
+ *   CENTER P0|P1|P2|P3 x y z         a control point of a cubic Bezier centre (all four
+ *                                    needed; switches the X|Y|Z form off)
+ *   RADII N|B|T a0 a1 a2 a3 b c w    f_N(u), f_B(u) (both needed), f_t(u) (default u)
+ *   FRAME FIXED|FRENET | FRAME N0|RMF x y z
+ *   FORM RATIONAL|TRIG               section points (default RATIONAL)
+ * Arity error:3, numbers error:4/5, range error:6 (|a_i|, |b|, |c|, |x|, ref <= 1e4 mm,
+ * |w| <= 23040 deg, ref != 0), keyword error:9. The geometry itself is checked by RUN.
+ */
+#include "job.h"
+#include "parse.h"
+
+/* cfg.set bits: Bezier points 0..3, radii N and B */
+#define SET_BEZIER 0x0Fu
+#define SET_RADII 0x30u
+
+/* The keywords, each after a digit: how many numbers follow it. A "|" ends a list: list 0
+ * the commands, list 1 + c the words of command c (the enum values in their order). */
+static const char words[] = "0CENTER\0" "0RADII\0" "0FRAME\0" "0FORM\0" "|\0"
+                            "7X\0" "7Y\0" "7Z\0" "3P0\0" "3P1\0" "3P2\0" "3P3\0" "|\0"
+                            "7N\0" "7B\0" "7T\0" "|\0"
+                            "0FIXED\0" "0FRENET\0" "3N0\0" "3RMF\0" "|\0"
+                            "0RATIONAL\0" "0TRIG\0" "|";
+
+/* Index of token t in word list `list`; *na = its number count, or 8 if not found. */
+static unsigned pick(const struct job_line *l, unsigned t, unsigned list, unsigned *na)
+{
+    unsigned i, k = 0;
+    *na = 8u;
+    for (i = 0; i < sizeof words; i++) {
+        const char *w = words + i;
+        if (i > 0u && w[-1] != '\0') {
+            continue; /* not the start of a word */
+        }
+        if (*w == '|') {
+            if (list-- == 0u) {
+                break;
+            }
+            k = 0;
+        } else if (list == 0u && parse_is(l->s + l->st[t], l->ln[t], w + 1)) {
+            *na = (unsigned)(*w - '0');
+            break;
+        } else {
+            k++;
+        }
+    }
+    return k;
+}
+
+/* Zero the 3 functions m[0..2]. */
+static void zero3(cp_real (*m)[GSR_FN])
+{
+    unsigned i;
+    for (i = 0; i < 3u * GSR_FN; i++) {
+        m[i / GSR_FN][i % GSR_FN] = CP_R(0.0);
+    }
+}
+
+void job_gsr_defaults(union path_geom *g)
+{
+    struct gsr_cfg *c = &g->gsr;
+    zero3(c->c);
+    zero3(c->r);
+    c->r[2][1] = CP_R(1.0); /* f_t(u) = u */
+    c->ref.x = c->ref.y = c->ref.z = CP_R(0.0);
+    c->centre = GSR_CENTRE_POLY;
+    c->frame = GSR_FRAME_FIXED;
+    c->section = GSR_SECTION_RATIONAL;
+    c->set = 0;
+}
+
+int job_gsr_command(struct job *j, const struct job_line *l)
+{
+    struct gsr_cfg *c;
+    cp_real v[GSR_FN];
+    unsigned cmd, k, na, i, bz;
+    int s;
+    cmd = pick(l, 0u, 0u, &na);
+    if (j == NULL || na > 7u) {
+        return j == NULL ? na <= 7u : JOB_NOT_MINE;
+    }
+    if (l->nt < 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    k = pick(l, 1u, cmd + 1u, &na);
+    if (na > 7u) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    if (l->nt != 2u + na) {
+        return CP_ST_BAD_ARITY;
+    }
+    s = job_numbers(l, 2u, na, v);
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
+        if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+    }
+    v[GSR_W] = na == GSR_FN ? v[GSR_W] * CP_DEG2RAD : CP_R(0.0);
+    c = &j->geom.gsr;
+    bz = k >= 3u;
+    switch (cmd) {
+    case 0u:                  /* CENTER */
+        if (bz != c->centre) { /* the other form: start afresh */
+            zero3(c->c);
+            c->centre = (uint8_t)bz;
+            c->set &= (uint8_t)~SET_BEZIER;
+            j->have &= (uint16_t)~JOB_HAVE_GSR_CENTER;
+        }
+        for (i = 0; i < na; i++) {
+            c->c[bz ? i : k][bz ? k - 3u : i] = v[i];
+        }
+        c->set |= (uint8_t)(bz << (k & 3u)); /* P0..P3 (k = 3..6): one bit each */
+        if (!bz || (c->set & SET_BEZIER) == SET_BEZIER) {
+            j->have |= JOB_HAVE_GSR_CENTER;
+        }
+        break;
+    case 1u: /* RADII */
+        for (i = 0; i < GSR_FN; i++) {
+            c->r[k][i] = v[i];
+        }
+        c->set |= (uint8_t)((0x10u << k) & SET_RADII);
+        if ((c->set & SET_RADII) == SET_RADII) {
+            j->have |= JOB_HAVE_GSR_RADII;
+        }
+        break;
+    case 2u: /* FRAME */
+        if (na != 0u) {
+            if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > CP_R(0.0))) {
+                return CP_ST_OUT_OF_RANGE;
+            }
+            c->ref.x = v[0];
+            c->ref.y = v[1];
+            c->ref.z = v[2];
+        }
+        c->frame = (uint8_t)k;
+        j->have |= JOB_HAVE_GSR_FRAME;
+        break;
+    default: /* FORM */
+        c->section = (uint8_t)k;
+        break;
+    }
+    return CP_ST_OK;
+}

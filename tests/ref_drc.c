@@ -1,0 +1,647 @@
+/* ref_drc.c - independent double reference of DRC-EXP, DD4, CCR, CSPLINE and A.4 measures.
+ * SPDX-License-Identifier: MIT
+ * (ref_drc.h: what is deliberately different from firmware/drc.c)
+ */
+#include "ref_drc.h"
+
+#include <complex.h>
+#include <math.h>
+#include <string.h>
+
+/* Iteration counts of A.2 (double). The Cortex-M4F unit image runs this reference in
+ * soft double, where the published counts take ~20 s; there it uses counts whose error is
+ * still far below the float comparison's limits (2e-5 D, 1e-3 rad): sweeps contract by
+ * ~0.35 (0.35^16 = 5e-8), brackets of 98 and 1 halved 32 times (2e-8, 2e-10). */
+#ifdef __arm__
+#define REF_Q_BISECT 32
+#define REF_SWEEPS 16
+#define REF_T_BISECT 32
+#else
+#define REF_Q_BISECT 64
+#define REF_SWEEPS 40
+#define REF_T_BISECT 60
+#endif
+
+typedef double v3[3];
+
+/* re + i im without the float-complex macro I (C99: a complex is an array of two) */
+static double complex mkc(double re, double im)
+{
+    double complex z;
+    double *w = (double *)&z;
+    w[0] = re;
+    w[1] = im;
+    return z;
+}
+
+static double vdot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void vcross(const double *a, const double *b, double *o)
+{
+    double r[3];
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+    memcpy(o, r, sizeof r);
+}
+
+static double vlen(const double *a)
+{
+    return sqrt(vdot(a, a));
+}
+
+static void vdiff(const double *a, const double *b, double *o) /* o = a - b */
+{
+    o[0] = a[0] - b[0];
+    o[1] = a[1] - b[1];
+    o[2] = a[2] - b[2];
+}
+
+static void vunit(double *a)
+{
+    double l = vlen(a);
+    if (l > 0.0) {
+        a[0] /= l;
+        a[1] /= l;
+        a[2] /= l;
+    }
+}
+
+/* ---- model functions (expm1 with the A.2 series threshold) ---- */
+static double complex E1c(double complex z)
+{
+    if (cabs(z) < 1e-4) {
+        return 1.0 + z / 2.0 + z * z / 6.0 + z * z * z / 24.0;
+    }
+    return (cexp(z) - 1.0) / z;
+}
+
+static double complex E2c(double complex z)
+{
+    if (cabs(z) < 1e-4) {
+        return 0.5 + z / 6.0 + z * z / 24.0 + z * z * z / 120.0;
+    }
+    return (cexp(z) - 1.0 - z) / (z * z);
+}
+
+static double E1r(double q)
+{
+    return fabs(q) < 1e-4 ? 1.0 + q / 2.0 + q * q / 6.0 + q * q * q / 24.0 : expm1(q) / q;
+}
+
+static double E2r(double q)
+{
+    return fabs(q) < 1e-4 ? 0.5 + q / 6.0 + q * q / 24.0 + q * q * q / 120.0
+                          : (expm1(q) - q) / (q * q);
+}
+
+static double rr(double q)
+{
+    double e2 = E2r(q);
+    return (E1r(q) - e2) / e2;
+}
+
+static double rinv_ref(double rho)
+{
+    double a = -49.0, b = 49.0;
+    int i;
+    for (i = 0; i < REF_Q_BISECT; i++) {
+        double m = 0.5 * (a + b);
+        if (rr(m) < rho) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+/* end curvatures of the segment model */
+static void model_k(double a, double b, double L, double *ka, double *kb, double *q)
+{
+    double th = fabs(a + b), Lt = th > 1e-12 ? L * (th / 2.0) / sin(th / 2.0) : L;
+    if (a * b > 0.0) {
+        double s = a > 0.0 ? 1.0 : -1.0, c;
+        *q = rinv_ref(fabs(b) / fabs(a));
+        c = fabs(a) / E2r(*q);
+        *ka = s * c / Lt;
+        *kb = s * c * exp(*q) / Lt;
+    } else if ((a == 0.0) != (b == 0.0)) {
+        /* one zero end angle: limit of the convex model (0 at that end, unbounded at the
+         * other) */
+        *q = 0.0;
+        *ka = a == 0.0 ? 0.0 : copysign(1e300, a);
+        *kb = b == 0.0 ? 0.0 : copysign(1e300, b);
+    } else {
+        *q = 0.0;
+        *ka = 2.0 * (2.0 * a - b) / Lt;
+        *kb = 2.0 * (2.0 * b - a) / Lt;
+    }
+}
+
+/* rotate v (unit, perpendicular to unit n) by angle t about n */
+static void vrot(const double *v, const double *n, double t, double *o)
+{
+    double w[3];
+    vcross(n, v, w);
+    o[0] = cos(t) * v[0] + sin(t) * w[0];
+    o[1] = cos(t) * v[1] + sin(t) * w[1];
+    o[2] = cos(t) * v[2] + sin(t) * w[2];
+}
+
+int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
+{
+    v3 d[REF_DRC_MAXN], nv[REF_DRC_MAXN];
+    double L[REF_DRC_MAXN], phi[REF_DRC_MAXN], tj[REF_DRC_MAXN], tau[REF_DRC_MAXN];
+    double lo[3], hi[3], D, aS = 0.0, bE = 0.0;
+    int i, k, sweep, first = -1;
+    if (n < 3) {
+        return REF_DRC_TOO_FEW;
+    }
+    if (n > REF_DRC_MAXN) {
+        return REF_DRC_TOO_MANY;
+    }
+    for (k = 0; k < 3; k++) {
+        lo[k] = hi[k] = P[0][k];
+    }
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < 3; k++) {
+            if (!isfinite(P[i][k])) {
+                return REF_DRC_NONFINITE;
+            }
+            lo[k] = fmin(lo[k], P[i][k]);
+            hi[k] = fmax(hi[k], P[i][k]);
+        }
+    }
+    D = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    for (i = 0; i + 1 < n; i++) {
+        vdiff(P[i + 1], P[i], d[i]);
+        L[i] = vlen(d[i]);
+        if (L[i] <= 1e-12 * D) {
+            return REF_DRC_COINCIDENT;
+        }
+        vunit(d[i]);
+    }
+    for (i = 1; i + 1 < n; i++) {
+        double c[3], s;
+        if (vdot(d[i - 1], d[i]) <= 0.0) {
+            return REF_DRC_TURN;
+        }
+        vcross(d[i - 1], d[i], c);
+        s = vlen(c);
+        if (s > 1e-6) {
+            vunit(c);
+            memcpy(nv[i], c, sizeof c);
+            if (first < 0) {
+                first = i;
+            } else if (vdot(nv[i], nv[i - 1]) < 0.0) {
+                nv[i][0] = -nv[i][0];
+                nv[i][1] = -nv[i][1];
+                nv[i][2] = -nv[i][2];
+            }
+        } else if (first >= 0) {
+            memcpy(nv[i], nv[i - 1], sizeof nv[i]);
+        }
+        if (first == i) {
+            for (k = 0; k < i; k++) {
+                memcpy(nv[k], nv[i], sizeof nv[i]);
+            }
+        }
+    }
+    if (first < 0) {
+        for (i = 0; i < n; i++) {
+            nv[i][0] = 0.0;
+            nv[i][1] = 0.0;
+            nv[i][2] = 1.0;
+        }
+    }
+    memcpy(nv[n - 1], nv[n - 2], sizeof nv[0]);
+    memcpy(nv[0], nv[first > 0 ? first : 1], sizeof nv[0]);
+    phi[0] = phi[n - 1] = 0.0;
+    for (i = 1; i + 1 < n; i++) {
+        double c[3];
+        vcross(d[i - 1], d[i], c);
+        phi[i] = atan2(vdot(c, nv[i]), vdot(d[i - 1], d[i]));
+        tj[i] = 0.5;
+    }
+    for (i = 0; i < n; i++) {
+        tau[i] = 0.0;
+    }
+    for (i = 1; i + 2 < n; i++) {
+        double c[3], ang;
+        vcross(nv[i], nv[i + 1], c);
+        ang = atan2(vdot(c, d[i]), vdot(nv[i], nv[i + 1]));
+        if (fabs(ang) >= atan(1.0)) {
+            return REF_DRC_TWIST;
+        }
+        tau[i] = ang / L[i];
+    }
+    if (n == 3) {
+        double ch[3], kap;
+        vdiff(P[2], P[0], ch);
+        kap = 2.0 * sin(phi[1]) / vlen(ch);
+        aS = asin(0.5 * L[0] * kap);
+        bE = asin(0.5 * L[1] * kap);
+    }
+#define A_OF(s) ((s) == 0 ? aS : tj[(s)] * phi[(s)])
+#define B_OF(s) ((s) == n - 2 ? bE : (1.0 - tj[(s) + 1]) * phi[(s) + 1])
+    for (sweep = 0; sweep < REF_SWEEPS; sweep++) {
+        if (n >= 4) {
+            double ka, kb, q;
+            model_k(A_OF(1), B_OF(1), L[1], &ka, &kb, &q);
+            aS = (1.0 - tj[1]) * phi[1] / rr(q * fmin(1.0, L[0] / L[1]));
+            model_k(A_OF(n - 3), B_OF(n - 3), L[n - 3], &ka, &kb, &q);
+            bE = tj[n - 2] * phi[n - 2] * rr(q * fmin(1.0, L[n - 2] / L[n - 3]));
+        }
+        for (i = 1; i + 1 < n; i++) {
+            double x0 = 0.0, x1 = 1.0;
+            int it;
+            if (phi[i] == 0.0) {
+                continue;
+            }
+            for (it = 0; it < REF_T_BISECT; it++) {
+                double x = 0.5 * (x0 + x1), ka, kb, kl, kr, q, f;
+                model_k(x * phi[i], B_OF(i), L[i], &ka, &kb, &q);
+                model_k(A_OF(i - 1), (1.0 - x) * phi[i], L[i - 1], &kl, &kr, &q);
+                f = (ka - kr) * (phi[i] > 0.0 ? 1.0 : -1.0);
+                if (f < 0.0) {
+                    x0 = x;
+                } else {
+                    x1 = x;
+                }
+            }
+            tj[i] = 0.5 * (x0 + x1);
+        }
+    }
+    for (i = 0; i < n; i++) {
+        int c = i < n - 1 ? i : n - 2, v = i == 0 ? 1 : (i == n - 1 ? n - 2 : i);
+        double ang = i == 0 ? aS : (i == n - 1 ? -bE : A_OF(i)), chi = 0.0, t0[3];
+        if (n >= 4) {
+            double ch[3], ks, tb;
+            vdiff(P[v + 1], P[v - 1], ch);
+            ks = 2.0 * sin(phi[v]) / vlen(ch);
+            if (i == 0) {
+                chi = ks * tau[1] * L[0] * L[1] / 3.0;
+            } else if (i == n - 1) {
+                chi = ks * tau[n - 3] * L[n - 2] * L[n - 3] / 3.0;
+            } else {
+                tb = v == 1 ? tau[1] : (v == n - 2 ? tau[n - 3] : 0.5 * (tau[v - 1] + tau[v]));
+                chi = -ks * tb * L[v - 1] * L[v] / 6.0;
+            }
+        }
+        vrot(d[c], nv[i], -ang, t0);
+        for (k = 0; k < 3; k++) {
+            T[i][k] = cos(chi) * t0[k] + sin(chi) * nv[i][k];
+        }
+    }
+#undef A_OF
+#undef B_OF
+    return REF_DRC_OK;
+}
+
+void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
+                    const double TB[3], double M[3], double TM[3])
+{
+    double d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al;
+    const double *T2[2];
+    double *g2[2];
+    int k, s;
+    vdiff(B, A, d);
+    c = vlen(d);
+    vunit(d);
+    T2[0] = TA;
+    T2[1] = TB;
+    g2[0] = gA;
+    g2[1] = gB;
+    for (s = 0; s < 2; s++) {
+        double p = vdot(T2[s], d), w[3], wl;
+        for (k = 0; k < 3; k++) {
+            w[k] = T2[s][k] - p * d[k];
+        }
+        wl = vlen(w);
+        for (k = 0; k < 3; k++) {
+            g2[s][k] = wl > 0.0 ? atan2(wl, p) * w[k] / wl : 0.0;
+        }
+    }
+    {
+        double a = vlen(gA), b = vlen(gB);
+        double complex GA = 0.0, GB = 0.0, rho = 0.0;
+        if (a > 0.0) {
+            for (k = 0; k < 3; k++) {
+                e1[k] = gA[k] / a;
+            }
+            vcross(d, e1, e2);
+            GA = a;
+            GB = mkc(vdot(gB, e1), vdot(gB, e2));
+            rho = -GB / GA;
+        }
+        if (a > 0.0 && b > 0.0 && creal(rho) > 0.0) {
+            double complex z = mkc(rinv_ref(cabs(rho)), 3.0 * carg(rho)), C, d1, gm;
+            int it;
+            for (it = 0; it < 30; it++) {
+                double complex h = 1e-7 * (1.0 + cabs(z)), f, fp, st;
+                f = (E1c(z) - E2c(z)) / E2c(z) - rho;
+                /* derivative of r: r = E1/E2 - 1, E1' = (e^z - E1)/z, E2' = (E1 - 2E2)/z */
+                if (cabs(z) > 1e-3) {
+                    double complex e1z = E1c(z), e2z = E2c(z);
+                    double complex d1z = (cexp(z) - e1z) / z, d2z = (e1z - 2.0 * e2z) / z;
+                    fp = (d1z * e2z - e1z * d2z) / (e2z * e2z);
+                } else {
+                    fp = ((E1c(z + h) / E2c(z + h)) - (E1c(z - h) / E2c(z - h))) / (2.0 * h);
+                }
+                st = f / fp;
+                if (cabs(st) > 1.0) {
+                    st /= cabs(st);
+                }
+                z -= st;
+                if (creal(z) > 49.0) {
+                    z = mkc(49.0, cimag(z));
+                }
+                if (creal(z) < -49.0) {
+                    z = mkc(-49.0, cimag(z));
+                }
+            }
+            C = -GA / E2c(z);
+            d1 = GA + (C / 2.0) * E2c(z / 2.0);
+            gm = GA + (C / 2.0) * E1c(z / 2.0);
+            for (k = 0; k < 3; k++) {
+                D1[k] = creal(d1) * e1[k] + cimag(d1) * e2[k];
+                GM[k] = creal(gm) * e1[k] + cimag(gm) * e2[k];
+            }
+        } else {
+            for (k = 0; k < 3; k++) {
+                D1[k] = (gA[k] - gB[k]) / 4.0;
+                GM[k] = -(gA[k] + gB[k]) / 4.0;
+            }
+        }
+    }
+    al = vlen(D1);
+    for (k = 0; k < 3; k++) {
+        double u = al > 0.0 ? D1[k] / al : 0.0;
+        M[k] = A[k] + c / (2.0 * cos(al)) * (cos(al) * d[k] + sin(al) * u);
+    }
+    al = vlen(GM);
+    for (k = 0; k < 3; k++) {
+        double u = al > 0.0 ? GM[k] / al : 0.0;
+        TM[k] = cos(al) * d[k] + sin(al) * u;
+    }
+}
+
+int ref_drc_run(const double (*P)[3], int n, int K, double (*out)[3], double (*Tout)[3],
+                int *nout)
+{
+    static double Pa[REF_DRC_MAXOUT][3], Ta[REF_DRC_MAXOUT][3];
+    static double Pb[REF_DRC_MAXOUT][3], Tb[REF_DRC_MAXOUT][3];
+    int m = n, pass, i, err;
+    *nout = 0;
+    if (n > REF_DRC_MAXN) {
+        return REF_DRC_TOO_MANY;
+    }
+    if (n >= 2 && ((n - 1) << K) + 1 > REF_DRC_MAXOUT) {
+        return REF_DRC_TOO_MANY;
+    }
+    err = ref_drc_tangents(P, n, Ta);
+    if (err) {
+        return err;
+    }
+    memcpy(Pa, P, (size_t)n * sizeof Pa[0]);
+    for (pass = 0; pass < K; pass++) {
+        for (i = 0; i + 1 < m; i++) {
+            memcpy(Pb[2 * i], Pa[i], sizeof Pa[0]);
+            memcpy(Tb[2 * i], Ta[i], sizeof Ta[0]);
+            ref_drc_insert(Pa[i], Ta[i], Pa[i + 1], Ta[i + 1], Pb[2 * i + 1], Tb[2 * i + 1]);
+        }
+        memcpy(Pb[2 * m - 2], Pa[m - 1], sizeof Pa[0]);
+        memcpy(Tb[2 * m - 2], Ta[m - 1], sizeof Ta[0]);
+        m = 2 * m - 1;
+        memcpy(Pa, Pb, (size_t)m * sizeof Pa[0]);
+        memcpy(Ta, Tb, (size_t)m * sizeof Ta[0]);
+    }
+    memcpy(out, Pa, (size_t)m * sizeof Pa[0]);
+    if (Tout) {
+        memcpy(Tout, Ta, (size_t)m * sizeof Ta[0]);
+    }
+    *nout = m;
+    return REF_DRC_OK;
+}
+
+/* ---- alternatives ---- */
+
+int ref_dd4(const double (*P)[3], int n, int K, double (*out)[3])
+{
+    static double a[REF_DRC_MAXOUT][3], b[REF_DRC_MAXOUT][3];
+    int m = n, pass, i, k;
+    memcpy(a, P, (size_t)n * sizeof a[0]);
+    for (pass = 0; pass < K; pass++) {
+        for (i = 0; i + 1 < m; i++) {
+            memcpy(b[2 * i], a[i], sizeof a[0]);
+            for (k = 0; k < 3; k++) {
+                double v;
+                if (i == 0) { /* cubic end rule (5P0 + 15P1 - 5P2 + P3)/16 */
+                    v = (5.0 * a[0][k] + 15.0 * a[1][k] - 5.0 * a[2][k] + a[3 < m ? 3 : 2][k]) /
+                        16.0;
+                } else if (i == m - 2) {
+                    v = (5.0 * a[m - 1][k] + 15.0 * a[m - 2][k] - 5.0 * a[m - 3][k] +
+                         a[m - 4 >= 0 ? m - 4 : 0][k]) /
+                        16.0;
+                } else {
+                    v = (-a[i - 1][k] + 9.0 * a[i][k] + 9.0 * a[i + 1][k] - a[i + 2][k]) / 16.0;
+                }
+                b[2 * i + 1][k] = v;
+            }
+        }
+        memcpy(b[2 * m - 2], a[m - 1], sizeof a[0]);
+        m = 2 * m - 1;
+        memcpy(a, b, (size_t)m * sizeof a[0]);
+    }
+    memcpy(out, a, (size_t)m * sizeof a[0]);
+    return m;
+}
+
+/* centripetal Catmull-Rom (Barry-Goldman pyramid), reflected end points */
+static void lerp_t(const double *a, const double *b, double ta, double tb, double t, double *o)
+{
+    int k;
+    for (k = 0; k < 3; k++) {
+        o[k] = (tb - t) / (tb - ta) * a[k] + (t - ta) / (tb - ta) * b[k];
+    }
+}
+
+int ref_ccr(const double (*P)[3], int n, int K, double (*out)[3])
+{
+    int i, j, k, m = 0, steps = 1 << K;
+    for (i = 0; i + 1 < n; i++) {
+        double q[4][3], t[4], d[3];
+        for (k = 0; k < 3; k++) {
+            q[1][k] = P[i][k];
+            q[2][k] = P[i + 1][k];
+            q[0][k] = i > 0 ? P[i - 1][k] : 2.0 * P[0][k] - P[1][k];
+            q[3][k] = i + 2 < n ? P[i + 2][k] : 2.0 * P[n - 1][k] - P[n - 2][k];
+        }
+        t[0] = 0.0;
+        for (j = 1; j < 4; j++) {
+            vdiff(q[j], q[j - 1], d);
+            t[j] = t[j - 1] + sqrt(vlen(d));
+        }
+        for (j = (i == 0 ? 0 : 1); j <= steps; j++) {
+            double u = t[1] + (t[2] - t[1]) * (double)j / (double)steps;
+            double a1[3], a2[3], a3[3], b1[3], b2[3];
+            lerp_t(q[0], q[1], t[0], t[1], u, a1);
+            lerp_t(q[1], q[2], t[1], t[2], u, a2);
+            lerp_t(q[2], q[3], t[2], t[3], u, a3);
+            lerp_t(a1, a2, t[0], t[2], u, b1);
+            lerp_t(a2, a3, t[1], t[3], u, b2);
+            lerp_t(b1, b2, t[1], t[2], u, out[m]);
+            if (j == steps) {
+                memcpy(out[m], P[i + 1], sizeof out[0]); /* interpolatory: exact node */
+            }
+            m++;
+        }
+    }
+    return m;
+}
+
+/* natural cubic spline, chord-length parameter, per coordinate (Thomas algorithm) */
+int ref_cspline(const double (*P)[3], int n, int K, double (*out)[3])
+{
+    double h[REF_DRC_MAXN], M[REF_DRC_MAXN][3], cp[REF_DRC_MAXN], dp[REF_DRC_MAXN][3], d[3];
+    int i, j, k, m = 0, steps = 1 << K;
+    for (i = 0; i + 1 < n; i++) {
+        vdiff(P[i + 1], P[i], d);
+        h[i] = vlen(d);
+    }
+    /* rows i = 1..n-2: h[i-1] M[i-1] + 2(h[i-1]+h[i]) M[i] + h[i] M[i+1] = 6 (slopes diff) */
+    cp[0] = 0.0;
+    for (k = 0; k < 3; k++) {
+        dp[0][k] = 0.0;
+    }
+    for (i = 1; i + 1 < n; i++) {
+        double a = h[i - 1], b = 2.0 * (h[i - 1] + h[i]), c = h[i], den = b - a * cp[i - 1];
+        cp[i] = c / den;
+        for (k = 0; k < 3; k++) {
+            double r = 6.0 * ((P[i + 1][k] - P[i][k]) / h[i] - (P[i][k] - P[i - 1][k]) / h[i - 1]);
+            dp[i][k] = (r - a * dp[i - 1][k]) / den;
+        }
+    }
+    for (k = 0; k < 3; k++) {
+        M[n - 1][k] = 0.0;
+        M[0][k] = 0.0;
+    }
+    for (i = n - 2; i >= 1; i--) {
+        for (k = 0; k < 3; k++) {
+            M[i][k] = dp[i][k] - cp[i] * M[i + 1][k];
+        }
+    }
+    for (i = 0; i + 1 < n; i++) {
+        for (j = (i == 0 ? 0 : 1); j <= steps; j++) {
+            double u = h[i] * (double)j / (double)steps, A = (h[i] - u) / h[i], B = u / h[i];
+            for (k = 0; k < 3; k++) {
+                out[m][k] = A * P[i][k] + B * P[i + 1][k] +
+                            ((A * A * A - A) * M[i][k] + (B * B * B - B) * M[i + 1][k]) * h[i] *
+                                h[i] / 6.0;
+            }
+            m++;
+        }
+    }
+    return m;
+}
+
+/* ---- A.4 measures ---- */
+
+double ref_kappa3(const double a[3], const double b[3], const double c[3], int sgn)
+{
+    double u[3], v[3], w[3], x[3], lu, lv, lw, s;
+    vdiff(b, a, u);
+    vdiff(c, b, v);
+    vdiff(c, a, w);
+    lu = vlen(u);
+    lv = vlen(v);
+    lw = vlen(w);
+    if (lu == 0.0 || lv == 0.0 || lw == 0.0) {
+        return 0.0;
+    }
+    vcross(u, v, x);
+    s = vlen(x) / (lu * lv); /* sin of the turning */
+    if (sgn && x[2] < 0.0) {
+        s = -s;
+    }
+    return 2.0 * s / lw;
+}
+
+static int count_extrema(const double *k, int n, double thr)
+{
+    int i, last = 0, c = 0;
+    for (i = 1; i < n; i++) {
+        double dk = k[i] - k[i - 1];
+        int sg = dk > thr ? 1 : (dk < -thr ? -1 : 0);
+        if (sg != 0) {
+            if (last != 0 && sg != last) {
+                c++;
+            }
+            last = sg;
+        }
+    }
+    return c;
+}
+
+void ref_measure(const double (*P)[3], int n, int sgn, struct ref_measures *m)
+{
+    static double k[REF_DRC_MAXOUT], t[REF_DRC_MAXOUT];
+    double kmax = 0.0, thr;
+    int i, nk = n - 2, last = 0, nt = 0;
+    memset(m, 0, sizeof *m);
+    for (i = 0; i < nk; i++) {
+        k[i] = ref_kappa3(P[i], P[i + 1], P[i + 2], sgn);
+        kmax = fmax(kmax, fabs(k[i]));
+        m->kmin = i == 0 ? k[i] : fmin(m->kmin, k[i]);
+        m->kmax = i == 0 ? k[i] : fmax(m->kmax, k[i]);
+    }
+    thr = 1e-6 * kmax;
+    m->extrema = count_extrema(k, nk, thr);
+    for (i = 0; i < nk; i++) {
+        int sg = k[i] > thr ? 1 : (k[i] < -thr ? -1 : 0);
+        if (sg != 0) {
+            if (last != 0 && sg != last) {
+                m->signs++;
+            }
+            last = sg;
+        }
+    }
+    /* point j = i + 1 has k[i]; new points: odd j with both neighbours interior */
+    for (i = 1; i + 1 < nk; i++) {
+        int j = i + 1;
+        double lo = fmin(k[i - 1], k[i + 1]), hi = fmax(k[i - 1], k[i + 1]);
+        if ((j & 1) && (k[i] < lo - thr || k[i] > hi + thr)) {
+            m->between++;
+        }
+    }
+    /* torsion of chords 2..n-4 (the interior: both adjoining planes away from the ends) */
+    for (i = 1; i + 2 < n - 1; i++) {
+        double u0[3], u1[3], u2[3], n1[3], n2[3], c[3], ang, L;
+        vdiff(P[i], P[i - 1], u0);
+        vdiff(P[i + 1], P[i], u1);
+        vdiff(P[i + 2], P[i + 1], u2);
+        vcross(u0, u1, n1);
+        vcross(u1, u2, n2);
+        vunit(n1);
+        vunit(n2);
+        vcross(n1, n2, c);
+        L = vlen(u1);
+        ang = atan2(vdot(c, u1) / L, vdot(n1, n2));
+        t[nt++] = ang / L;
+    }
+    if (nt > 0) {
+        double tm = 0.0;
+        m->tmin = m->tmax = t[0];
+        for (i = 0; i < nt; i++) {
+            m->tmin = fmin(m->tmin, t[i]);
+            m->tmax = fmax(m->tmax, t[i]);
+            tm = fmax(tm, fabs(t[i]));
+        }
+        m->t_extrema = count_extrema(t, nt, 1e-6 * tm);
+    }
+}

@@ -1,0 +1,230 @@
+/* ref_gsr.c - independent double reference of the generalized surface of revolution.
+ * SPDX-License-Identifier: MIT
+ */
+#include "ref_gsr.h"
+
+#include <math.h>
+#include <string.h>
+
+#define RPI 3.14159265358979323846
+
+void ref_gsr_fn(const double a[7], double x, double d[3])
+{
+    double wx = a[6] * x, s = sin(wx), c = cos(wx);
+    d[0] = a[0] + a[1] * x + a[2] * x * x + a[3] * x * x * x + a[4] * s + a[5] * c;
+    d[1] = a[1] + 2.0 * a[2] * x + 3.0 * a[3] * x * x + a[6] * (a[4] * c - a[5] * s);
+    d[2] = 2.0 * a[2] + 6.0 * a[3] * x - a[6] * a[6] * (a[4] * s + a[5] * c);
+}
+
+void ref_gsr_centre(const struct ref_gsr *g, double t, double C[3], double D1[3], double D2[3])
+{
+    int ax;
+    for (ax = 0; ax < 3; ax++) {
+        if (g->centre == 1) {
+            const double *p = g->c[ax];
+            double q0 = p[0] + t * (p[1] - p[0]), q1 = p[1] + t * (p[2] - p[1]),
+                   q2 = p[2] + t * (p[3] - p[2]);
+            double s0 = q0 + t * (q1 - q0), s1 = q1 + t * (q2 - q1);
+            double h0 = p[1] - p[0], h1 = p[2] - p[1], h2 = p[3] - p[2];
+            C[ax] = s0 + t * (s1 - s0);
+            D1[ax] = 3.0 * ((1.0 - t) * (1.0 - t) * h0 + 2.0 * t * (1.0 - t) * h1 + t * t * h2);
+            D2[ax] = 6.0 * ((1.0 - t) * (h1 - h0) + t * (h2 - h1));
+        } else {
+            double d[3];
+            ref_gsr_fn(g->c[ax], t, d);
+            C[ax] = d[0];
+            D1[ax] = d[1];
+            D2[ax] = d[2];
+        }
+    }
+}
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const double *a, const double *b, double *o)
+{
+    double r[3];
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+    memcpy(o, r, sizeof r);
+}
+
+static void unit3(double *a)
+{
+    double l = sqrt(dot3(a, a));
+    a[0] /= l;
+    a[1] /= l;
+    a[2] /= l;
+}
+
+static void tangent(const struct ref_gsr *g, double t, double x[3], double T[3])
+{
+    double D2[3];
+    ref_gsr_centre(g, t, x, T, D2);
+    unit3(T);
+}
+
+/* One double-reflection step of the RMF normal r from (x0, T0) to t1. */
+static void dr_step(const struct ref_gsr *g, double x0[3], double T0[3], double r[3], double t1)
+{
+    double x1[3], T1[3], v1[3], v2[3], rl[3], tl[3], c1, c2, a, b;
+    int i;
+    tangent(g, t1, x1, T1);
+    for (i = 0; i < 3; i++) {
+        v1[i] = x1[i] - x0[i];
+    }
+    c1 = dot3(v1, v1);
+    if (c1 == 0.0) {
+        return; /* a step of length 0 (t1 = t0): nothing to transport */
+    }
+    a = 2.0 * dot3(v1, r) / c1;
+    b = 2.0 * dot3(v1, T0) / c1;
+    for (i = 0; i < 3; i++) {
+        rl[i] = r[i] - a * v1[i];
+        tl[i] = T0[i] - b * v1[i];
+        v2[i] = T1[i] - tl[i];
+    }
+    c2 = dot3(v2, v2);
+    a = c2 > 0.0 ? 2.0 * dot3(v2, rl) / c2 : 0.0;
+    for (i = 0; i < 3; i++) {
+        r[i] = rl[i] - a * v2[i];
+        x0[i] = x1[i];
+        T0[i] = T1[i];
+    }
+}
+
+void ref_gsr_set(struct ref_gsr *g, int centre, const double c[3][7], const double r[3][7],
+                 int frame, const double ref[3])
+{
+    double d[3], x[3], T[3], n[3], h;
+    int k, s;
+    memset(g, 0, sizeof *g);
+    g->centre = centre;
+    g->frame = frame;
+    memcpy(g->c, c, sizeof g->c);
+    memcpy(g->r, r, sizeof g->r);
+    memcpy(g->ref, ref, sizeof g->ref);
+    ref_gsr_fn(g->r[2], 0.0, d);
+    g->t0 = d[0];
+    ref_gsr_fn(g->r[2], 1.0, d);
+    g->t1 = d[0];
+    if (frame != 3) {
+        return;
+    }
+    tangent(g, g->t0, x, T);
+    h = dot3(ref, T);
+    for (k = 0; k < 3; k++) {
+        n[k] = ref[k] - h * T[k];
+    }
+    unit3(n);
+    memcpy(g->rmf[0], n, sizeof n);
+    h = (g->t1 - g->t0) / (double)(REF_GSR_RMF * REF_GSR_RMF_SUB);
+    for (k = 0; k < REF_GSR_RMF; k++) {
+        for (s = 1; s <= REF_GSR_RMF_SUB; s++) {
+            dr_step(g, x, T, n, g->t0 + h * (double)(k * REF_GSR_RMF_SUB + s));
+        }
+        memcpy(g->rmf[k + 1], n, sizeof n);
+    }
+}
+
+void ref_gsr_frame(const struct ref_gsr *g, double t, double T[3], double N[3], double B[3])
+{
+    double C[3], D1[3], D2[3];
+    ref_gsr_centre(g, t, C, D1, D2);
+    memcpy(T, D1, sizeof D1);
+    unit3(T);
+    if (g->frame == 0) {
+        N[0] = T[2];
+        N[1] = 0.0;
+        N[2] = -T[0];
+        B[0] = 0.0;
+        B[1] = 1.0;
+        B[2] = 0.0;
+        return;
+    }
+    if (g->frame == 1) {
+        cross3(D1, D2, B);
+    } else if (g->frame == 2) {
+        cross3(T, g->ref, B);
+    } else {
+        /* march from the node below */
+        double span = g->t1 - g->t0, f = (t - g->t0) / span * REF_GSR_RMF, x[3], Tn[3], r[3];
+        int k = (int)floor(f), s;
+        k = k < 0 ? 0 : (k >= REF_GSR_RMF ? REF_GSR_RMF - 1 : k);
+        f = g->t0 + span * (double)k / REF_GSR_RMF;
+        tangent(g, f, x, Tn);
+        memcpy(r, g->rmf[k], sizeof r);
+        for (s = 1; s <= REF_GSR_RMF_SUB; s++) {
+            dr_step(g, x, Tn, r, f + (t - f) * (double)s / REF_GSR_RMF_SUB);
+        }
+        f = dot3(r, T);
+        for (s = 0; s < 3; s++) {
+            N[s] = r[s] - f * T[s];
+        }
+        unit3(N);
+        cross3(T, N, B);
+        return;
+    }
+    unit3(B);
+    cross3(B, T, N);
+}
+
+void ref_gsr_point(const struct ref_gsr *g, double u, double theta, double P[3])
+{
+    double ft[3], fn[3], fb[3], C[3], D1[3], D2[3], T[3], N[3], B[3];
+    int i;
+    ref_gsr_fn(g->r[0], u, fn);
+    ref_gsr_fn(g->r[1], u, fb);
+    ref_gsr_fn(g->r[2], u, ft);
+    ref_gsr_centre(g, ft[0], C, D1, D2);
+    ref_gsr_frame(g, ft[0], T, N, B);
+    for (i = 0; i < 3; i++) {
+        P[i] = C[i] + fn[0] * cos(theta) * N[i] + fb[0] * sin(theta) * B[i];
+    }
+}
+
+void ref_gsr_normal(const struct ref_gsr *g, double u, double theta, double n[3])
+{
+    double fn[3], fb[3], ft[3], T[3], N[3], B[3], gt[3], gu[3], a[3], b[3], c[3], d[3];
+    double h = 1e-3;
+    int i;
+    ref_gsr_fn(g->r[0], u, fn);
+    ref_gsr_fn(g->r[1], u, fb);
+    ref_gsr_fn(g->r[2], u, ft);
+    ref_gsr_frame(g, ft[0], T, N, B);
+    /* u +- h may leave [0, 1]: every function extends smoothly */
+    ref_gsr_point(g, u + h, theta, a);
+    ref_gsr_point(g, u - h, theta, b);
+    ref_gsr_point(g, u + 0.5 * h, theta, c);
+    ref_gsr_point(g, u - 0.5 * h, theta, d);
+    for (i = 0; i < 3; i++) {
+        double g1 = (a[i] - b[i]) / (2.0 * h), g2 = (c[i] - d[i]) / h;
+        gu[i] = (4.0 * g2 - g1) / 3.0;
+        gt[i] = -fn[0] * sin(theta) * N[i] + fb[0] * cos(theta) * B[i];
+    }
+    cross3(gt, gu, n); /* G_theta x G_u: away from C wherever the sweep is regular */
+    unit3(n);
+}
+
+double ref_gsr_theta(double psi)
+{
+    double q = floor(psi), v;
+    if (q > 1.0) {
+        q = 1.0;
+    }
+    v = psi - q;
+    return q * RPI / 2.0 + RPI / 4.0 + 2.0 * atan(tan(RPI / 8.0) * (2.0 * v - 1.0));
+}
+
+double ref_gsr_psi(double theta)
+{
+    double q = floor(theta / (RPI / 2.0));
+    if (q > 1.0) {
+        q = 1.0;
+    }
+    return q + 0.5 * (1.0 + tan((theta - q * RPI / 2.0 - RPI / 4.0) / 2.0) / tan(RPI / 8.0));
+}

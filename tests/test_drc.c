@@ -1,0 +1,651 @@
+/* test_drc.c - DRC-EXP (seed 001): thickening against the independent reference,
+ * the acceptance measures of issue 6, rejections, the streaming iterator.
+ * SPDX-License-Identifier: MIT
+ */
+#include <string.h>
+
+#include "drc.h"
+#include "path.h"
+#include "ref_canal.h"
+#include "ref_drc.h"
+#include "test.h"
+
+/* Heavy note-only comparisons (soft doubles) run on the host only. */
+#ifdef TEST_NO_MAIN
+#define DRC_HEAVY 0
+#else
+#define DRC_HEAVY 1
+#endif
+
+/* ---- test sets (MATH-seeds A.5 names; our own samples) ---- */
+enum { SET_SPIRAL_U, SET_SPIRAL_N, SET_ELLIPSE, SET_LINE_ARC, SET_CIRCLE, SET_HELIX_FINE,
+       SET_CONE_3D, SET_N };
+
+static const char *const set_name[SET_N] = {"spiral_uniform", "spiral_nonuniform",
+                                            "ellipse_quadrant", "line_arc",
+                                            "circle_nonuniform", "helix_fine",
+                                            "conical_spiral_3d"};
+
+/* clothoid-like spiral k(s) = 0.2 + 0.5 s: position by composite Simpson */
+static void spiral_at(double s, double p[3])
+{
+    int i, m = 64;
+    double h = s / m, x = 0.0, y = 0.0;
+    for (i = 0; i <= m; i++) {
+        double u = h * i, th = 0.2 * u + 0.25 * u * u;
+        double w = (i == 0 || i == m) ? 1.0 : (i & 1 ? 4.0 : 2.0);
+        x += w * cos(th);
+        y += w * sin(th);
+    }
+    p[0] = x * h / 3.0;
+    p[1] = y * h / 3.0;
+    p[2] = 0.0;
+}
+
+static int make_set(int id, double (*P)[3])
+{
+    static const double su[7] = {0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
+    static const double sn[8] = {0.0, 0.3, 0.8, 1.2, 1.7, 2.1, 2.6, 3.0};
+    static const double te[8] = {0.0, 0.15, 0.35, 0.5, 0.75, 0.95, 1.25, 1.5707963267948966};
+    static const double tc[8] = {0.0, 0.2, 0.5, 0.7, 1.1, 1.3, 1.7, 2.0};
+    int i;
+    switch (id) {
+    case SET_SPIRAL_U:
+        for (i = 0; i < 7; i++) {
+            spiral_at(su[i], P[i]);
+        }
+        return 7;
+    case SET_SPIRAL_N:
+        for (i = 0; i < 8; i++) {
+            spiral_at(sn[i], P[i]);
+        }
+        return 8;
+    case SET_ELLIPSE:
+        for (i = 0; i < 8; i++) {
+            P[i][0] = 3.0 * cos(te[i]);
+            P[i][1] = sin(te[i]);
+            P[i][2] = 0.0;
+        }
+        return 8;
+    case SET_LINE_ARC:
+        for (i = 0; i < 4; i++) {
+            P[i][0] = -3.0 + i;
+            P[i][1] = 0.0;
+            P[i][2] = 0.0;
+        }
+        for (i = 1; i <= 4; i++) {
+            double a = -1.5707963267948966 + 0.5 * i;
+            P[3 + i][0] = 2.0 * cos(a);
+            P[3 + i][1] = 2.0 + 2.0 * sin(a);
+            P[3 + i][2] = 0.0;
+        }
+        return 8;
+    case SET_CIRCLE:
+        for (i = 0; i < 8; i++) {
+            P[i][0] = 2.0 * cos(tc[i]);
+            P[i][1] = 2.0 * sin(tc[i]);
+            P[i][2] = 0.0;
+        }
+        return 8;
+    case SET_HELIX_FINE: /* r = 1, c = 0.3, 22.5 deg per segment; 12 points (CP_MAX_DRC_POINTS) */
+        for (i = 0; i < 12; i++) {
+            double t = 0.39269908169872414 * i;
+            P[i][0] = cos(t);
+            P[i][1] = sin(t);
+            P[i][2] = 0.3 * t;
+        }
+        return 12;
+    default: /* conical spiral: radius 1 + 0.15 t, z = 0.3 t, 22.5 deg per segment */
+        for (i = 0; i < 12; i++) {
+            double t = 0.39269908169872414 * i;
+            P[i][0] = (1.0 + 0.15 * t) * cos(t);
+            P[i][1] = (1.0 + 0.15 * t) * sin(t);
+            P[i][2] = 0.3 * t;
+        }
+        return 12;
+    }
+}
+
+static double set_size(const double (*P)[3], int n)
+{
+    double lo[3], hi[3];
+    int i, k;
+    for (k = 0; k < 3; k++) {
+        lo[k] = hi[k] = P[0][k];
+    }
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], P[i][k]);
+            hi[k] = fmax(hi[k], P[i][k]);
+        }
+    }
+    return sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/* library buffers (K <= 5 on 12 points: 353 points) */
+#define LIB_CAP (32 * 11 + 1)
+static struct drc_pt lib[LIB_CAP];
+static double refp[REF_DRC_MAXOUT][3], reft[REF_DRC_MAXOUT][3];
+static double setp[REF_DRC_MAXN][3];
+
+static int lib_run(const double (*P)[3], int n, int K, uint32_t *m)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        lib[i].p.x = (cp_real)P[i][0];
+        lib[i].p.y = (cp_real)P[i][1];
+        lib[i].p.z = (cp_real)P[i][2];
+    }
+    return drc_run(lib, (uint32_t)n, (uint32_t)K, LIB_CAP, m);
+}
+
+/* 1. the library against the independent reference, K = 0..4 (double: 1e-9 D). A pass
+ * keeps every earlier point, so the K = 4 output holds K = 0..3 at strides 16..2: one
+ * run per set covers all five K. The M4F runs two sets (the reference is soft double). */
+int test_drc_ref_match(void)
+{
+    int id;
+    double worst = 0.0, worst_t = 0.0;
+    for (id = 0; id < SET_N; id++) {
+        int n = make_set(id, setp), nr = 0;
+        double D = set_size((const double(*)[3])setp, n), e = 0.0, et = 0.0;
+        uint32_t m = 0, i;
+        if (!DRC_HEAVY && id != SET_SPIRAL_N && id != SET_HELIX_FINE) {
+            continue;
+        }
+        CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, 4, &m), CP_OK);
+        CHECK_EQ_INT(ref_drc_run((const double(*)[3])setp, n, 4, refp, reft, &nr), 0);
+        CHECK_EQ_INT(m, nr);
+        for (i = 0; i < m; i++) {
+            double dx = (double)lib[i].p.x - refp[i][0], dy = (double)lib[i].p.y - refp[i][1],
+                   dz = (double)lib[i].p.z - refp[i][2];
+            double tx = (double)lib[i].t.x - reft[i][0], ty = (double)lib[i].t.y - reft[i][1],
+                   tz = (double)lib[i].t.z - reft[i][2];
+            e = fmax(e, sqrt(dx * dx + dy * dy + dz * dz) / D);
+            et = fmax(et, sqrt(tx * tx + ty * ty + tz * tz));
+        }
+        TEST_NOTE("drc ref %-18s max |P - ref| = %.2e D, |T - ref| = %.2e (K = 0..4, %s)\n",
+                  set_name[id], e, et, CP_REAL_NAME);
+        worst = fmax(worst, e);
+        worst_t = fmax(worst_t, et);
+    }
+#if CP_REAL_DOUBLE
+    CHECK(worst <= 1e-9);
+    CHECK(worst_t <= 1e-8);
+#else
+    CHECK(worst <= 2e-5);
+    CHECK(worst_t <= 1e-3);
+#endif
+    return 0;
+}
+
+static struct drc_cfg gcfg;
+static struct drc_path it;
+static struct toolpath_pt tpt[4];
+
+static void set_geom(const double (*P)[3], int n, int K, int edge)
+{
+    int i;
+    memset(&gcfg, 0, sizeof gcfg);
+    for (i = 0; i < n; i++) {
+        gcfg.p[i].x = (cp_real)P[i][0];
+        gcfg.p[i].y = (cp_real)P[i][1];
+        gcfg.p[i].z = (cp_real)P[i][2];
+    }
+    gcfg.n = (uint8_t)n;
+    gcfg.passes = (uint8_t)K;
+    gcfg.edge = (uint8_t)edge;
+}
+
+static void raster_defaults(struct toolpath_cfg *c)
+{
+    memset(c, 0, sizeof *c);
+    c->mode = TOOLPATH_LINES;
+    c->n = 1;
+    c->link = TOOLPATH_LINK_AUTO;
+    c->tol = CP_R(0.001);
+}
+
+static int same_bits(const struct toolpath_pt *a, const struct toolpath_pt *b)
+{
+    return memcmp(&a->p, &b->p, sizeof a->p) == 0 && memcmp(&a->n, &b->n, sizeof a->n) == 0 &&
+           a->line == b->line && a->index == b->index;
+}
+
+/* streamed tree points (CURVE mode) = the in-place thickening, bit for bit; seek(k)
+ * reproduces point k bit for bit. The stream is planar (drc.h, "Footprint"): a 3D set is
+ * CP_ERR_OFF_PLANE at init (the 3D library path is checked by test_drc_ref_match and
+ * test_drc_helix). */
+int test_drc_stream_equals_thicken(void)
+{
+    static const int sets[3] = {SET_SPIRAL_N, SET_LINE_ARC, SET_CIRCLE};
+    struct toolpath_cfg rc;
+    int s;
+    unsigned seed = 6u;
+    raster_defaults(&rc);
+    for (s = 0; s < (DRC_HEAVY ? 3 : 1); s++) {
+        int n = make_set(sets[s], setp), K = DRC_HEAVY ? 4 : 3;
+        uint32_t m = 0, k, c;
+        CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, K, &m), CP_OK);
+        set_geom((const double(*)[3])setp, n, K, 0);
+        CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+        c = drc_path_count(&it);
+        CHECK_EQ_INT(c, m);
+        for (k = 0; k < c; k++) {
+            CHECK_EQ_INT(drc_path_next(&it, &tpt[0]), CP_OK);
+            CHECK(memcmp(&tpt[0].p, &lib[k].p, sizeof tpt[0].p) == 0);
+            CHECK(memcmp(&tpt[0].n, &lib[k].t, sizeof tpt[0].n) == 0);
+            CHECK_EQ_INT(tpt[0].index, k);
+        }
+        CHECK_EQ_INT(drc_path_next(&it, &tpt[0]), CP_ERR_DONE);
+        for (k = 0; k < (DRC_HEAVY ? 20u : 6u); k++) {
+            uint32_t q = test_prng(&seed) % c;
+            CHECK_EQ_INT(drc_path_seek(&it, q), CP_OK);
+            CHECK_EQ_INT(drc_path_next(&it, &tpt[0]), CP_OK);
+            CHECK(memcmp(&tpt[0].p, &lib[q].p, sizeof tpt[0].p) == 0);
+            CHECK(memcmp(&tpt[0].n, &lib[q].t, sizeof tpt[0].n) == 0);
+        }
+    }
+    set_geom((const double(*)[3])setp, make_set(SET_HELIX_FINE, setp), 3, 0);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_OFF_PLANE);
+    return 0;
+}
+
+/* EDGE mode: a fillet along a non-uniformly sampled circular arc (DRC reproduces the
+ * circle) with a LINEAR radius law; every streamed point against the independent canal
+ * reference (adaptive ODE of the curvature lines, ref_canal.c), and seek bit for bit. */
+int test_drc_edge_vs_canal_ref(void)
+{
+    static const double ang[7] = {0.0, 0.25, 0.45, 0.8, 1.1, 1.5, 2.0};
+    static const double us[3] = {-0.5, 0.2, 0.9};
+    struct toolpath_cfg rc;
+    struct ref_canal cref;
+    double cp[8] = {0}, rp[4] = {0}, P[7][3], worst = 0.0, wn = 0.0;
+    uint32_t c, k, steps;
+    unsigned seed = 61u;
+    int i;
+    for (i = 0; i < 7; i++) {
+        P[i][0] = 1.0 + 20.0 * cos(ang[i]);
+        P[i][1] = -2.0 + 20.0 * sin(ang[i]);
+        P[i][2] = 0.0;
+    }
+    set_geom((const double(*)[3])P, 7, DRC_HEAVY ? 4 : 3, 1);
+    raster_defaults(&rc);
+    rc.surf.radius = CANAL_R_LINEAR;
+    rc.surf.rp[0] = CP_R(4.0);
+    rc.surf.rp[1] = CP_R(6.0);
+    rc.n = 3;
+    rc.u0 = (cp_real)us[0];
+    rc.u1 = (cp_real)us[2];
+    rc.tol = CP_R(0.002);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    c = drc_path_count(&it);
+    steps = it.steps;
+    CHECK_EQ_INT(c, 3u * (steps + 1u) + 2u * it.link);
+    cp[0] = 1.0;
+    cp[1] = -2.0;
+    cp[2] = 20.0;
+    cp[3] = 0.0;
+    cp[4] = 2.0;
+    rp[0] = 4.0;
+    rp[1] = 6.0;
+    ref_canal_set(&cref, REF_ARC, REF_R_LINEAR, cp, rp);
+    for (k = 0; k < c; k++) {
+        CHECK_EQ_INT(drc_path_next(&it, &tpt[0]), CP_OK);
+        if (tpt[0].line >= 0) {
+            struct ref_line l;
+            double m[3], nn[3], t, d;
+            /* the surface point is off C: t from the contact point of its sphere,
+             * C = m - R n (n points out of the sphere, centre (C, R)) */
+            {
+                double sg = (double)tpt[0].t, R = 4.0 + 2.0 * sg;
+                double cx = (double)tpt[0].p.x - R * (double)tpt[0].n.x;
+                double cy = (double)tpt[0].p.y - R * (double)tpt[0].n.y;
+                t = atan2(cy + 2.0, cx - 1.0);
+            }
+            ref_line_start(&l, &cref, 0.0, us[tpt[0].line]);
+            CHECK_EQ_INT(ref_line_advance(&l, t), 0);
+            ref_point(&cref, t, l.u, m, nn);
+            d = sqrt(((double)tpt[0].p.x - m[0]) * ((double)tpt[0].p.x - m[0]) +
+                     ((double)tpt[0].p.y - m[1]) * ((double)tpt[0].p.y - m[1]) +
+                     ((double)tpt[0].p.z - m[2]) * ((double)tpt[0].p.z - m[2]));
+            worst = fmax(worst, d);
+            wn = fmax(wn, fabs((double)tpt[0].n.x * nn[0] + (double)tpt[0].n.y * nn[1] +
+                               (double)tpt[0].n.z * nn[2] - 1.0));
+        }
+        tpt[1 + (k & 1u)] = tpt[0];
+        if (k == c / 2u) {
+            tpt[3] = tpt[0];
+        }
+    }
+    TEST_NOTE("drc edge: fillet along a 7-point arc, K = %u, %u points, max |m - canal ref| = "
+              "%.2e mm, max 1 - n.n_ref = %.1e (%s)\n",
+              (unsigned)it.passes, (unsigned)c, worst, wn, CP_REAL_NAME);
+#if CP_REAL_DOUBLE
+    CHECK(worst <= 2e-6);
+#else
+    CHECK(worst <= 2e-4);
+#endif
+    CHECK(wn <= 1e-5);
+    for (k = 0; k < 6u; k++) {
+        uint32_t q = k == 0u ? c / 2u : test_prng(&seed) % c;
+        struct toolpath_pt a;
+        CHECK_EQ_INT(drc_path_seek(&it, q), CP_OK);
+        CHECK_EQ_INT(drc_path_next(&it, &a), CP_OK);
+        if (q == c / 2u) {
+            CHECK(same_bits(&a, &tpt[3]));
+        }
+        CHECK(cp_isfinite(a.p.x));
+    }
+    return 0;
+}
+
+/* tangent-triangle containment of every inserted point of every pass (2D) */
+static int triangle_violations(const struct drc_pt *b, uint32_t m)
+{
+    uint32_t i;
+    int v = 0;
+    for (i = 1; i + 1u < m; i += 2u) {
+        v += !drc_in_triangle(&b[i - 1u], &b[i + 1u], &b[i].p);
+    }
+    return v;
+}
+
+static void to_vec(const struct drc_pt *b, uint32_t m, struct cp_vec3 *v)
+{
+    uint32_t i;
+    for (i = 0; i < m; i++) {
+        v[i] = b[i].p;
+    }
+}
+
+static struct cp_vec3 vin[LIB_CAP], vout[LIB_CAP];
+
+/* Acceptance 1-2: planar sets at K = 5: 0 extra extrema, 0 new sign changes, 0
+ * between-neighbour violations, 0 tangent-triangle violations; the circle to 1e-12 R;
+ * original-point curvature change decreasing K = 1..5. Double build (the measures need
+ * double points: float curvature noise at K = 5 is ~1e-3 relative); the float build
+ * checks the triangle and the circle to float precision. */
+int test_drc_planar_acceptance(void)
+{
+    static const int sets[5] = {SET_SPIRAL_U, SET_SPIRAL_N, SET_ELLIPSE, SET_LINE_ARC,
+                                SET_CIRCLE};
+    int s, tri_total = 0, ins_total = 0;
+    for (s = 0; s < 5; s++) {
+        int id = sets[s], n = make_set(id, setp), K, i;
+        uint32_t m = 0;
+        struct drc_measures mi, mo;
+        double kprev[REF_DRC_MAXN], conv[6] = {0}, circ = 0.0;
+        (void)kprev;
+        (void)circ;
+        /* one run at K = 5; pass K's points are every 2^(5-K)-th (passes keep points) */
+        CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, 5, &m), CP_OK);
+        for (K = 1; K <= 5; K++) {
+            uint32_t sd = (uint32_t)1u << (5 - K), j, mk = ((uint32_t)(n - 1) << K) + 1u;
+            for (j = 1; j + 1u < mk; j += 2u) { /* pass K inserted the odd points */
+                tri_total += !drc_in_triangle(&lib[(j - 1u) * sd], &lib[(j + 1u) * sd],
+                                              &lib[j * sd].p);
+            }
+            ins_total += (int)(mk - 1u) / 2;
+#if CP_REAL_DOUBLE
+            {
+                double mx = 0.0;
+                uint32_t st = (uint32_t)1u << K;
+                for (i = 1; i + 1 < n; i++) {
+                    uint32_t c = (uint32_t)i * st;
+                    double k = (double)drc_kappa3(&lib[(c - 1u) * sd].p, &lib[c * sd].p,
+                                                  &lib[(c + 1u) * sd].p, 1);
+                    if (K > 1) {
+                        mx = fmax(mx, fabs(k - kprev[i]));
+                    }
+                    kprev[i] = k;
+                }
+                conv[K] = mx;
+            }
+#endif
+        }
+        if (id == SET_CIRCLE) {
+            uint32_t j;
+            for (j = 0; j < m; j++) {
+                double r = sqrt((double)lib[j].p.x * (double)lib[j].p.x +
+                                (double)lib[j].p.y * (double)lib[j].p.y);
+                circ = fmax(circ, fabs(r - 2.0));
+            }
+            TEST_NOTE("drc circle_nonuniform K = 5: max |r - 2| = %.2e (%s)\n", circ,
+                      CP_REAL_NAME);
+#if CP_REAL_DOUBLE
+            CHECK(circ <= 1e-12 * 2.0);
+#else
+            CHECK(circ <= 2e-6 * 2.0);
+#endif
+        }
+        for (i = 0; i < n; i++) {
+            vin[i].x = (cp_real)setp[i][0];
+            vin[i].y = (cp_real)setp[i][1];
+            vin[i].z = (cp_real)setp[i][2];
+        }
+        CHECK_EQ_INT(drc_measure(vin, (uint32_t)n, 1, &mi), CP_OK);
+        CHECK_EQ_INT(triangle_violations(lib, m), 0);
+        to_vec(lib, m, vout);
+        CHECK_EQ_INT(drc_measure(vout, m, 1, &mo), CP_OK);
+        TEST_NOTE("drc %-18s K=5 DRC (%s): extra extrema %d, new sign changes %d, between %u, k %.3f..%.3f "
+                  "(in %.3f..%.3f); convergence %.1e %.1e %.1e %.1e\n",
+                  set_name[id], CP_REAL_NAME, (int)mo.extrema - (int)mi.extrema,
+                  (int)mo.signs - (int)mi.signs, (unsigned)mo.between, (double)mo.kmin,
+                  (double)mo.kmax, (double)mi.kmin, (double)mi.kmax, conv[2], conv[3], conv[4],
+                  conv[5]);
+#if CP_REAL_DOUBLE
+        CHECK(mo.extrema <= mi.extrema);
+        CHECK(mo.signs <= mi.signs);
+        CHECK_EQ_INT(mo.between, 0);
+        for (K = 3; K <= 5; K++) {
+            CHECK(conv[K] <= conv[K - 1] || conv[K] <= 1e-12);
+        }
+#endif
+    }
+    TEST_NOTE("drc tangent-triangle violations: %d of %d inserted points (5 planar sets, K = 1..5)\n",
+              tri_total, ins_total);
+    CHECK_EQ_INT(tri_total, 0);
+    return 0;
+}
+
+/* Acceptance 3: the same measures for DD4, CCR and CSPLINE (notes for the README
+ * table), and DRC's measured by the reference's own measure function; both measure
+ * functions must agree on every polyline. Host only (soft doubles on the M4F). */
+int test_drc_comparison(void)
+{
+#if DRC_HEAVY
+    static double out[REF_DRC_MAXOUT][3], pin[REF_DRC_MAXN][3];
+    static const char *const mname[4] = {"DRC", "DD4", "CCR", "CSPLINE"};
+    int id;
+    for (id = 0; id < SET_N; id++) {
+        int n = make_set(id, pin), meth, m = 0, planar = id < SET_HELIX_FINE;
+        struct ref_measures ri, ro;
+        ref_measure((const double(*)[3])pin, n, planar, &ri);
+        for (meth = 0; meth < 4; meth++) {
+            if (meth == 0) {
+                CHECK_EQ_INT(ref_drc_run((const double(*)[3])pin, n, 5, out, NULL, &m), 0);
+            } else if (meth == 1) {
+                m = ref_dd4((const double(*)[3])pin, n, 5, out);
+            } else if (meth == 2) {
+                m = ref_ccr((const double(*)[3])pin, n, 5, out);
+            } else {
+                m = ref_cspline((const double(*)[3])pin, n, 5, out);
+            }
+            CHECK_EQ_INT(m, ((n - 1) << 5) + 1);
+            ref_measure((const double(*)[3])out, m, planar, &ro);
+#if CP_REAL_DOUBLE
+            {
+                struct drc_measures lm;
+                int i;
+                for (i = 0; i < m; i++) {
+                    vout[i].x = out[i][0];
+                    vout[i].y = out[i][1];
+                    vout[i].z = out[i][2];
+                }
+                CHECK_EQ_INT(drc_measure(vout, (uint32_t)m, planar, &lm), CP_OK);
+                CHECK_EQ_INT(lm.extrema, ro.extrema);
+                CHECK_EQ_INT(lm.signs, ro.signs);
+                CHECK_EQ_INT(lm.between, ro.between);
+            }
+#endif
+            if (planar) {
+                TEST_NOTE("drc table %-18s %-7s extra extrema %3d  new signs %2d  between %3d  k %.3f..%.3f\n",
+                          set_name[id], mname[meth], ro.extrema - ri.extrema,
+                          ro.signs - ri.signs, ro.between, ro.kmin, ro.kmax);
+            } else {
+                TEST_NOTE("drc table %-18s %-7s extra extrema %3d  new signs %2d  between %3d  k %.6f..%.6f  tau %.4f..%.4f\n",
+                          set_name[id], mname[meth], ro.extrema - ri.extrema,
+                          ro.signs - ri.signs, ro.between, ro.kmin, ro.kmax, ro.tmin, ro.tmax);
+            }
+            if (meth == 0 && planar) {
+                CHECK(ro.extrema <= ri.extrema && ro.signs <= ri.signs && ro.between == 0);
+            }
+        }
+    }
+#endif
+    return 0;
+}
+
+/* Acceptance 4: 3D helix_fine: curvature regularity in the interior (the exact helix
+ * curvature r/(r^2 + c^2) = 0.917431), and the torsion ripple per K (A.6: an open
+ * problem, stated, not required). */
+int test_drc_helix(void)
+{
+    int n = make_set(SET_HELIX_FINE, setp), K;
+    double kex = 1.0 / 1.09, tex = 0.3 / 1.09;
+    for (K = 1; K <= (DRC_HEAVY ? 5 : 3); K++) {
+        uint32_t m = 0, i, st = (uint32_t)1u << K, lo, hi;
+        double kmin = 1e9, kmax = -1e9, tmin = 1e9, tmax = -1e9;
+        CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, K, &m), CP_OK);
+        /* interior: skip the first and last 2 original segments */
+        lo = 2u * st;
+        hi = m - 1u - 2u * st;
+        for (i = lo; i <= hi; i++) {
+            double k = (double)drc_kappa3(&lib[i - 1u].p, &lib[i].p, &lib[i + 1u].p, 0);
+            double t = (double)drc_tau4(&lib[i - 1u].p, &lib[i].p, &lib[i + 1u].p, &lib[i + 2u].p);
+            kmin = fmin(kmin, k);
+            kmax = fmax(kmax, k);
+            tmin = fmin(tmin, t);
+            tmax = fmax(tmax, t);
+        }
+        TEST_NOTE("drc helix_fine K=%d interior k %.6f..%.6f (exact %.6f, spread %.1e rel), tau "
+                  "%.4f..%.4f (exact %.4f, ripple %.1e) (%s)\n",
+                  K, kmin, kmax, kex, (kmax - kmin) / kex, tmin, tmax, tex, tmax - tmin,
+                  CP_REAL_NAME);
+#if CP_REAL_DOUBLE
+        CHECK((kmax - kmin) / kex <= 1e-4);
+        CHECK(fabs(0.5 * (kmin + kmax) - kex) / kex <= 1e-3);
+#else
+        if (K <= 3) {
+            CHECK((kmax - kmin) / kex <= 2e-2);
+        }
+#endif
+    }
+    return 0;
+}
+
+/* Acceptance 6: every rejection of A.3 returns its own code. */
+int test_drc_rejects(void)
+{
+    static double P[5][3];
+    struct toolpath_cfg rc;
+    uint32_t need = 0;
+    int i;
+    for (i = 0; i < 5; i++) {
+        P[i][0] = i;
+        P[i][1] = 0.1 * i * i;
+        P[i][2] = 0.0;
+    }
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 2, 1, &need), CP_ERR_TOO_FEW);
+    CHECK_EQ_INT(drc_size(12, CP_MAX_PASSES + 1u, &need), CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(drc_size(2, 1, &need), CP_ERR_TOO_FEW);
+    /* buffer too small: the size needed is reported, nothing written */
+    for (i = 0; i < 5; i++) {
+        lib[i].p.x = (cp_real)P[i][0];
+        lib[i].p.y = (cp_real)P[i][1];
+        lib[i].p.z = CP_R(0.0);
+    }
+    CHECK_EQ_INT(drc_run(lib, 5, 3, 32, &need), CP_ERR_BUFFER);
+    CHECK_EQ_INT(need, 33);
+    CHECK_EQ_INT(drc_thicken(lib, 5, 8, &need), CP_ERR_BUFFER);
+    CHECK_EQ_INT(need, 9);
+    CHECK_EQ_INT(drc_run(lib, 5, 3, 33, &need), CP_OK);
+    P[2][0] = P[1][0];
+    P[2][1] = P[1][1];
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 5, 1, &need), CP_ERR_COINCIDENT);
+    P[2][0] = 0.5; /* a reversal: turn >= 90 deg */
+    P[2][1] = 0.1;
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 5, 1, &need), CP_ERR_TURN);
+    P[2][0] = 2.0;
+    P[2][1] = 0.4;
+    P[3][1] = NAN;
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 5, 1, &need), CP_ERR_NONFINITE);
+    P[3][1] = 0.9;
+    /* twist: adjoining planes 60 deg apart */
+    P[0][0] = 0.0; P[0][1] = 0.0; P[0][2] = 0.0;
+    P[1][0] = 1.0; P[1][1] = 0.0; P[1][2] = 0.0;
+    P[2][0] = 2.0; P[2][1] = 0.3; P[2][2] = 0.0;
+    P[3][0] = 3.0; P[3][1] = 0.6 + 0.15; P[3][2] = 0.26;
+    P[4][0] = 4.0; P[4][1] = 1.2; P[4][2] = 0.9;
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 5, 1, &need), CP_ERR_TWIST);
+    /* all collinear is not an error: the subdivided straight line */
+    for (i = 0; i < 5; i++) {
+        P[i][0] = i * 1.5;
+        P[i][1] = i * 0.5;
+        P[i][2] = 0.0;
+    }
+    CHECK_EQ_INT(lib_run((const double(*)[3])P, 5, 2, &need), CP_OK);
+    CHECK_NEAR(lib[3].p.y, 0.375, 1e-6, 0); /* point 3 of 4 per segment: y(0.75) */
+    /* the iterator: too many passes, EDGE off the plane, TOL unreachable */
+    raster_defaults(&rc);
+    P[1][2] = 0.5;
+    set_geom((const double(*)[3])P, 5, CP_MAX_PASSES + 1, 0);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(drc_path_count(&it), 0);
+    set_geom((const double(*)[3])P, 5, 2, 1);
+    rc.surf.rp[0] = CP_R(1.0);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_OFF_PLANE);
+    make_set(SET_SPIRAL_U, setp);
+    for (i = 0; i < 7; i++) { /* x100: 10 nm needs more than CP_MAX_PASSES passes */
+        setp[i][0] *= 100.0;
+        setp[i][1] *= 100.0;
+    }
+    set_geom((const double(*)[3])setp, 7, DRC_PASSES_AUTO, 0);
+    rc.tol = CP_R(1e-5);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_TOL);
+    rc.tol = CP_R(0.001);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    TEST_NOTE("drc TOL 1 um on spiral_uniform x100 (7 points): K = %u, %u points\n",
+              (unsigned)it.passes, (unsigned)drc_path_count(&it));
+    set_geom((const double(*)[3])setp, 2, 1, 0);
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_TOO_FEW);
+    return 0;
+}
+
+/* The A.4 measure function on hand-made sequences with known counts. */
+int test_drc_measures(void)
+{
+    static const double ys[9] = {0.0, 0.1, 0.4, 0.8, 1.1, 1.3, 1.6, 2.1, 2.4};
+    struct drc_measures m;
+    int i;
+    for (i = 0; i < 9; i++) {
+        vin[i].x = (cp_real)i;
+        vin[i].y = (cp_real)(0.05 * i * i);
+        vin[i].z = CP_R(0.0);
+    }
+    CHECK_EQ_INT(drc_measure(vin, 9, 1, &m), CP_OK); /* a parabola: k decreasing */
+    CHECK_EQ_INT(m.extrema, 0);
+    CHECK_EQ_INT(m.signs, 0);
+    CHECK(m.kmin > CP_R(0.0));
+    for (i = 0; i < 9; i++) {
+        vin[i].y = (cp_real)ys[i];
+    }
+    CHECK_EQ_INT(drc_measure(vin, 9, 1, &m), CP_OK);
+    /* second differences + + - - + + - : k changes sign 3 times */
+    CHECK_EQ_INT(m.signs, 3);
+    CHECK(m.extrema >= 2u);
+    CHECK_EQ_INT(drc_measure(vin, 2, 1, &m), CP_ERR_TOO_FEW);
+    return 0;
+}
