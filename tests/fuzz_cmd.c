@@ -58,14 +58,22 @@ static uint8_t pending[512];   /* machine answers not yet queued (in[] full) */
 static size_t npending;
 static size_t in_base;         /* bytes of in[] dropped by in_reset (progress counter) */
 
-/* independent iterator of the current run's job */
-static struct toolpath ref;
-static struct toolpath_cfg ref_cfg, snap_cfg, pre_cfg;
+/* independent iterator of the current run's job, whatever its SURFACE (path.h): a
+ * job snapshot is the raster, the other models' geometry and the kind. The iterator
+ * may keep pointers into ref_snap (the DRC and GSR paths do), so ref_snap is only
+ * rewritten together with a new path_init. */
+struct snap {
+    struct toolpath_cfg cfg;
+    union path_geom geom;
+    uint8_t kind;
+};
+static struct path ref;
+static struct snap ref_snap, snap_cfg, pre_cfg;
 /* pre_cfg of the last PRE_HIST polls, newest at pre_hist[pre_n % PRE_HIST]: a header
  * staged in the engine's TX buffer may reach the HAL a poll or more after the poll
  * that started (and ended) its run, when later job lines have changed the job. */
 #define PRE_HIST 8u
-static struct toolpath_cfg pre_hist[PRE_HIST];
+static struct snap pre_hist[PRE_HIST];
 static unsigned pre_n;
 static int ref_ok, have_snap;
 static int poll_active; /* the engine was running after the current poll */
@@ -125,17 +133,26 @@ static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
     if (!ref_ok) {
         return 0;
     }
-    if (ref.k != k && toolpath_seek(&ref, k) != CP_OK) {
+    if (path_pos(&ref) != k && path_seek(&ref, k) != CP_OK) {
         return 0;
     }
-    return toolpath_next(&ref, pt) == CP_OK;
+    return path_next(&ref, pt) == CP_OK;
 }
 
-static int ref_try(const struct toolpath_cfg *c)
+/* The engine's job now, padding zeroed (snapshots are compared with memcmp). */
+static void snap_of(struct snap *s)
 {
-    if (!ref_ok || memcmp(&ref_cfg, c, sizeof ref_cfg) != 0) {
-        ref_cfg = *c;
-        ref_ok = toolpath_init(&ref, &ref_cfg) == CP_OK;
+    memset(s, 0, sizeof *s);
+    memcpy(&s->cfg, &eng.job.cfg, sizeof s->cfg);
+    memcpy(&s->geom, &eng.job.geom, sizeof s->geom);
+    s->kind = eng.job.kind;
+}
+
+static int ref_try(const struct snap *c)
+{
+    if (!ref_ok || memcmp(&ref_snap, c, sizeof ref_snap) != 0) {
+        ref_snap = *c;
+        ref_ok = path_init(&ref, ref_snap.kind, &ref_snap.cfg, &ref_snap.geom) == CP_OK;
     }
     return ref_ok;
 }
@@ -152,21 +169,23 @@ static int ref_try(const struct toolpath_cfg *c)
  * poll, and the first is the preamble / BEGIN). */
 static void ref_start(uint32_t count)
 {
+    struct snap now;
     if (poll_active) {
         if (!ref_try(&snap_cfg)) {
             FAIL("the firmware runs a job the iterator rejects");
         }
         return;
     }
-    if ((have_snap && ref_try(&snap_cfg) && toolpath_count(&ref) == count) ||
-        (ref_try(&pre_cfg) && toolpath_count(&ref) == count) ||
-        (ref_try(&eng.job.cfg) && toolpath_count(&ref) == count)) {
+    snap_of(&now);
+    if ((have_snap && ref_try(&snap_cfg) && path_count(&ref) == count) ||
+        (ref_try(&pre_cfg) && path_count(&ref) == count) ||
+        (ref_try(&now) && path_count(&ref) == count)) {
         return;
     }
     {
         unsigned i;
         for (i = 1; i < PRE_HIST && i < pre_n; i++) {
-            if (ref_try(&pre_hist[(pre_n - i) % PRE_HIST]) && toolpath_count(&ref) == count) {
+            if (ref_try(&pre_hist[(pre_n - i) % PRE_HIST]) && path_count(&ref) == count) {
                 return;
             }
         }
@@ -256,7 +275,7 @@ static void text_line(char *l)
             gk = (uint32_t)strtoul(f + 7, NULL, 10);
             hfirst = gk; /* lines until the next header belong to this run, even when
                           * they arrive after the host has already sent a new RESUME */
-            if (strtoul(l + 12, NULL, 10) != toolpath_count(&ref)) {
+            if (strtoul(l + 12, NULL, 10) != path_count(&ref)) {
                 FAIL("run header count differs: \"%s\"", l);
             }
         }
@@ -307,7 +326,7 @@ static void frame_in(const uint8_t *f)
     int n;
     if (f[2] == FRAME_BEGIN) {
         ref_start(frame_get_u32(f + 3));
-        if (f[0] != 15u + FRAME_OVERHEAD || frame_get_u32(f + 3) != toolpath_count(&ref)) {
+        if (f[0] != 15u + FRAME_OVERHEAD || frame_get_u32(f + 3) != path_count(&ref)) {
             FAIL("bad BEGIN frame");
         }
     } else if (f[2] == FRAME_POINT) {
@@ -405,7 +424,7 @@ static int poll_once(void)
 {
     size_t in0 = in_read(), out0 = mem.out_len;
     int r;
-    pre_cfg = eng.job.cfg;
+    snap_of(&pre_cfg);
     pre_hist[pre_n % PRE_HIST] = pre_cfg;
     pre_n++;
     r = proto_poll(&eng);
@@ -421,7 +440,7 @@ static int poll_once(void)
     }
     poll_active = eng.state != PROTO_IDLE;
     if (poll_active) {
-        snap_cfg = eng.job.cfg;
+        snap_of(&snap_cfg);
         snap_checksum = eng.job.checksum;
         have_snap = 1;
     }
