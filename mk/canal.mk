@@ -40,7 +40,7 @@ guard-docs:
 ## sizes: sizeof of every firmware context on the M4F (float) and the host double build
 sizes: $(BUILD)/m4f/sizes_probe.o $(BUILD)/hostd/sizes_probe.o
 	@echo "context sizes (bytes)        M4F float   host double"
-	$(Q)for s in toolpath canal job frame_rx proto; do \
+	$(Q)for s in toolpath canal gsr_path channel_path drc_path path path_geom job frame_rx proto; do \
 	    a=$$(arm-none-eabi-nm -S $(BUILD)/m4f/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    b=$$(nm -S $(BUILD)/hostd/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    printf "  struct %-20s %9d   %11d\n" $$s $$((0x$$a)) $$((0x$$b)); done

@@ -10,3 +10,8 @@ const struct canal sizeof_canal;
 const struct job sizeof_job;
 const struct frame_rx sizeof_frame_rx;
 const struct proto sizeof_proto;
+const struct path sizeof_path;
+const union path_geom sizeof_path_geom;
+const struct gsr_path sizeof_gsr_path;
+const struct channel_path sizeof_channel_path;
+const struct drc_path sizeof_drc_path;
