@@ -554,6 +554,25 @@ static void call_gsr_init(void)
     bench_sink = gsr_path_init(&gsr_it, &gsr_g, &c);
 }
 
+/* even arc length on the G1 section 1.7 x 0.95 (library; not in the streamed path) */
+static struct gsr_arclen gsr_arc;
+static volatile cp_real gsr_arc_f = CP_R(0.3712);
+
+static void setup_gsr_arclen(void)
+{
+    bench_sink = gsr_arclen_init(&gsr_arc, CP_R(1.7), CP_R(0.95));
+}
+
+static void call_gsr_arclen_angle(void)
+{
+    bench_sink = (int32_t)(gsr_arclen_angle(&gsr_arc, gsr_arc_f) * 1000.0f);
+}
+
+static void call_gsr_arclen_init(void)
+{
+    bench_sink = gsr_arclen_init(&gsr_arc, CP_R(1.7), CP_R(0.95));
+}
+
 static const struct bench_case cases[] = {
     {"empty", setup_none, call_empty}, /* must stay first: the baseline */
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
@@ -582,6 +601,8 @@ static const struct bench_case cases[] = {
     {"gsr_line_pt_g1", setup_gsr_line_g1, call_gsr_next},
     {"gsr_unit_rational", setup_none, call_gsr_rational},
     {"gsr_init_g1_tol2um", setup_gsr_line_g1, call_gsr_init},
+    {"gsr_arclen_angle", setup_gsr_arclen, call_gsr_arclen_angle},
+    {"gsr_arclen_init", setup_none, call_gsr_arclen_init},
 };
 
 #define N_CASES (sizeof cases / sizeof cases[0])

@@ -386,6 +386,143 @@ cp_real gsr_psi(cp_real th)
     return q + CP_R(0.5) * (CP_R(1.0) + sn / (cs * TAN_PI_8));
 }
 
+/* ---- even arc length on an elliptic section (gsr.h; not used by the iterator) ---- */
+
+#define ARC_H (HALF_PI / (cp_real)GSR_ARCLEN_N) /* table step, rad */
+
+/* 4-point Gauss-Legendre on [-1, 1]: nodes +-x[i], weights w[i] */
+static const cp_real gl4_x[2] = {CP_R(0.33998104358485626480), CP_R(0.86113631159405257522)};
+static const cp_real gl4_w[2] = {CP_R(0.65214515486254614263), CP_R(0.34785484513745385737)};
+
+/* |E'(th)| = sqrt(a^2 sin^2 + b^2 cos^2), mm/rad (no cancellation: both terms >= 0) */
+static cp_real arc_speed(const struct gsr_arclen *t, cp_real th)
+{
+    cp_real sn, cs;
+    cp_sincos(th, &sn, &cs);
+    return cp_sqrt(t->aa * sn * sn + t->bb * cs * cs);
+}
+
+/* Signed arc length from x0 to x1 (4-point Gauss-Legendre, one panel). */
+static cp_real arc_gl(const struct gsr_arclen *t, cp_real x0, cp_real x1)
+{
+    cp_real m = CP_R(0.5) * (x0 + x1), hw = CP_R(0.5) * (x1 - x0), sum = CP_R(0.0);
+    uint32_t i;
+    for (i = 0; i < 2u; i++) {
+        cp_real d = hw * gl4_x[i];
+        sum += gl4_w[i] * (arc_speed(t, m - d) + arc_speed(t, m + d));
+    }
+    return hw * sum;
+}
+
+/* s(phi) for phi in [0, pi/2]: the table node nearest phi plus one panel (<= h/2). */
+static cp_real arc_part(const struct gsr_arclen *t, cp_real phi)
+{
+    uint32_t j = (uint32_t)(phi / ARC_H + CP_R(0.5));
+    j = j < GSR_ARCLEN_N ? j : GSR_ARCLEN_N;
+    return t->cum[j] + arc_gl(t, (cp_real)j * ARC_H, phi);
+}
+
+/* phi in [0, pi/2] with s(phi) = s, s in [0, L_q]. */
+static cp_real arc_inv(const struct gsr_arclen *t, cp_real s)
+{
+    uint32_t lo = 0u, i;
+    cp_real p0, p1, phi;
+    for (i = GSR_ARCLEN_N / 2u; i > 0u; i >>= 1) { /* log2 N steps: cum[lo] <= s */
+        lo = t->cum[lo + i] <= s ? lo + i : lo;
+    }
+    p0 = (cp_real)lo * ARC_H;
+    p1 = (cp_real)(lo + 1u) * ARC_H;
+    /* cum[lo + 1] - cum[lo] >= h min(a, b) > 0 */
+    phi = p0 + ARC_H * (s - t->cum[lo]) / (t->cum[lo + 1u] - t->cum[lo]);
+    for (i = 0; i < GSR_ARCLEN_NEWTON; i++) {
+        uint32_t j = phi - p0 < p1 - phi ? lo : lo + 1u;
+        cp_real r = t->cum[j] + arc_gl(t, (cp_real)j * ARC_H, phi) - s;
+        phi -= r / arc_speed(t, phi);
+        phi = phi > p0 ? phi : p0;
+        phi = phi < p1 ? phi : p1;
+    }
+    return phi;
+}
+
+int gsr_arclen_init(struct gsr_arclen *t, cp_real fn, cp_real fb)
+{
+    cp_real lo, hi, sum = CP_R(0.0), comp = CP_R(0.0);
+    uint32_t k;
+    if (t == NULL) {
+        return CP_ERR_INVAL;
+    }
+    if (!cp_isfinite(fn) || !cp_isfinite(fb)) {
+        return CP_ERR_NONFINITE;
+    }
+    if (!(fn > CP_R(0.0)) || !(fb > CP_R(0.0))) {
+        return CP_ERR_SECTION;
+    }
+    lo = fn < fb ? fn : fb;
+    hi = fn < fb ? fb : fn;
+    if (hi > GSR_COEF_MAX || hi > GSR_ARCLEN_RATIO * lo) {
+        return CP_ERR_RANGE;
+    }
+    t->aa = fn * fn;
+    t->bb = fb * fb;
+    t->cum[0] = CP_R(0.0);
+    for (k = 0; k < GSR_ARCLEN_N; k++) { /* Kahan: cum[] to ~1 ulp of L_q */
+        cp_real y = arc_gl(t, (cp_real)k * ARC_H, (cp_real)(k + 1u) * ARC_H) - comp;
+        cp_real n = sum + y;
+        comp = (n - sum) - y;
+        sum = n;
+        t->cum[k + 1u] = sum;
+    }
+    t->lq = sum;
+    return CP_OK;
+}
+
+/* Quarter index of x in [0, 4] by comparisons (3 at x = 4). */
+static uint32_t arc_quarter(cp_real x)
+{
+    return x >= CP_R(2.0) ? (x >= CP_R(3.0) ? 3u : 2u) : (x >= CP_R(1.0) ? 1u : 0u);
+}
+
+cp_real gsr_arclen_angle(const struct gsr_arclen *t, cp_real f)
+{
+    cp_real x, r, th;
+    uint32_t q;
+    if (!(f == f)) {
+        return f;
+    }
+    x = CP_R(4.0) * cp_fabs(f); /* exact */
+    x = x < CP_R(4.0) ? x : CP_R(4.0);
+    q = arc_quarter(x);
+    r = x - (cp_real)q; /* exact (Sterbenz), in [0, 1] */
+    if (q & 1u) {       /* odd quarter: mirror about its end, s(x) = L_q - s(pi/2 - x) */
+        th = (cp_real)(q + 1u) * HALF_PI - arc_inv(t, t->lq - r * t->lq);
+    } else {
+        th = (cp_real)q * HALF_PI + arc_inv(t, r * t->lq);
+    }
+    return f < CP_R(0.0) ? -th : th;
+}
+
+cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real th)
+{
+    cp_real x, phi, s;
+    uint32_t q;
+    if (!(th == th)) {
+        return th;
+    }
+    x = cp_fabs(th);
+    x = x < CP_R(4.0) * HALF_PI ? x : CP_R(4.0) * HALF_PI;
+    q = arc_quarter(x / HALF_PI);
+    phi = x - (cp_real)q * HALF_PI;
+    phi = phi > CP_R(0.0) ? phi : CP_R(0.0);
+    phi = phi < HALF_PI ? phi : HALF_PI;
+    if (q & 1u) {
+        s = (cp_real)(q + 1u) * t->lq - arc_part(t, HALF_PI - phi);
+    } else {
+        s = (cp_real)q * t->lq + arc_part(t, phi);
+    }
+    s = s / (CP_R(4.0) * t->lq);
+    return th < CP_R(0.0) ? -s : s;
+}
+
 /* ---- iterator ---------------------------------------------------------------------- */
 
 /* Section parameter of eccentric angle th: th itself (TRIG) or psi (RATIONAL). */

@@ -188,6 +188,87 @@ void gsr_unit_rational(cp_real psi, cp_real *cx, cp_real *cy);
 /* psi of eccentric angle theta in [-pi, pi] (closed form v(theta), one cp_sincos). */
 cp_real gsr_psi(cp_real theta);
 
+/* ---- even arc-length spacing on an elliptic section (C.2 "Speed"; library only: the
+ * raster of gsr_path_* does not use it, the streamed points are uniform in theta / psi) ----
+ *
+ * Ellipse E(theta) = (a cos theta, b sin theta), a = f_N, b = f_B (mm), theta the eccentric
+ * angle of the top comment. Speed |E'(theta)| = sqrt(a^2 sin^2 theta + b^2 cos^2 theta)
+ * (mm/rad) is even about theta = 0 and theta = pi/2, so one quarter describes the whole
+ * ellipse: the table holds the arc length s(theta_k) from theta = 0 at the GSR_ARCLEN_N + 1
+ * nodes theta_k = k (pi/2) / GSR_ARCLEN_N of [0, pi/2] (each interval by 4-point
+ * Gauss-Legendre, summed with Kahan compensation); the quarter length L_q = cum[N], the
+ * perimeter P = 4 L_q (exact factor).
+ *
+ * gsr_arclen_angle(t, f) returns theta with s(theta) = f P (f in [-1, 1]; theta in
+ * [-2 pi, 2 pi], odd in f, s measured from theta = 0 towards +B for f > 0): the quarter
+ * and the position in it follow from 4|f| (exactly), odd quarters by the mirror
+ * s(pi/2 + x) = 2 L_q - s(pi/2 - x); inside the quarter a fixed 6-step bisection of the
+ * table gives the node interval [theta_k, theta_k+1], linear interpolation of s the start,
+ * then GSR_ARCLEN_NEWTON Newton steps theta -= (s(theta) - target) / |E'(theta)| with
+ * s(theta) = cum[j] + (4-point Gauss-Legendre from the nearer node theta_j to theta), each
+ * step clamped to the interval (it brackets the root). Cost per call: GSR_ARCLEN_NEWTON x
+ * 5 cp_sincos + 5 sqrt (M4F float, 2 steps: 960 instructions, `make bench` row
+ * gsr_arclen_angle; gsr_arclen_init 20 928). gsr_arclen_frac is the
+ * forward map (one partial quadrature, no iteration): f of theta.
+ *
+ * Error analysis (errors as |s(theta(f)) - f P| / P; measured by tests/test_gsr.c
+ * gsr_arclen against adaptive Simpson and the AGM perimeter, f = j/40, sections 1.7 x 0.95
+ * (the G1 section of C.2), 0.95 x 1.7, 1 x 1, 4 x 1, 1 x 16).
+ * (1) Quadrature: the speed is analytic except at the branch points theta = m pi +-
+ * i atanh(r) (a > b; pi/2 + m pi +- i atanh(r) when b > a), r = min(a, b) / max(a, b).
+ * 4-point Gauss-Legendre on a panel of h = pi/128 errs like rho^-8, rho the Bernstein
+ * ellipse of the panel through the branch point: at r = 0.56 (atanh 0.63 = 26 h) rho ~ 100,
+ * far below double rounding; at the limit r = 1/GSR_ARCLEN_RATIO (atanh 0.0626 = 2.6 h)
+ * rho ~ 10 on the panel next to the branch point. Measured (double): 7e-16 at 1.7 x 0.95,
+ * 2e-16 at 4 x 1, 2.4e-14 at 1 x 16 (that is the quadrature floor: 4 Newton steps give the
+ * same). The Newton partial panels span <= h/2 (rho larger still).
+ * (2) Newton: the linear start errs by O(h^2 max|E''| / |E'|) (worst at r = 1/16), the
+ * steps converge quadratically and are clamped to the bracketing node interval. Measured
+ * (double, 2001 f): 1 / 2 / 3 steps give 9e-11 / 1.4e-15 / 2.7e-15 at 1.7 x 0.95 and
+ * 2.4e-8 / 1.2e-13 / 2.4e-14 at 1 x 16; in float 1 step already reaches the rounding
+ * level (1.5e-7 at 16 x 1). Hence GSR_ARCLEN_NEWTON = 3 (double), 2 (float: one spare).
+ * (3) Rounding (float): the Kahan sum keeps cum[] to ~1 ulp of L_q; the result is
+ * q pi/2 +- phi with pi/2 rounded, so theta carries ~1-2 ulp of its magnitude (up to
+ * 5e-7 rad near 2 pi) and s(theta) that times |E'| <= max(a, b). Measured: <= 1.1e-7 of the
+ * perimeter over the five sections (1.1e-7 at 1.7 x 0.95); gsr_arclen_frac round trip
+ * <= 7e-8 (float), <= 8e-16 (double).
+ * The double build uses libm sin/cos; the float build only + - * / sqrt and cp_sincos. */
+#define GSR_ARCLEN_N 64u           /* table intervals over [0, pi/2] (a power of 2) */
+#if CP_REAL_DOUBLE
+#define GSR_ARCLEN_NEWTON 3u       /* Newton steps per gsr_arclen_angle (see (2)) */
+#else
+#define GSR_ARCLEN_NEWTON 2u
+#endif
+#define GSR_ARCLEN_RATIO CP_R(16.0) /* max(f_N, f_B) / min(f_N, f_B) limit */
+
+/* Caller-owned table of one section (float: 272 B; double: 544 B). Read-only after init;
+ * lq (mm) may be read: the perimeter is 4 lq. */
+struct gsr_arclen {
+    cp_real aa, bb;                   /* f_N^2, f_B^2, mm^2 */
+    cp_real lq;                       /* quarter arc length L_q, mm */
+    cp_real cum[GSR_ARCLEN_N + 1u];   /* s(theta_k), theta_k = k pi / (2 N), mm */
+};
+
+/* Build the table of the ellipse with semi-axes f_n (along N, theta = 0) and f_b (mm).
+ * Errors (t then unusable):
+ *   CP_ERR_INVAL      t NULL
+ *   CP_ERR_NONFINITE  f_n or f_b NaN or Inf
+ *   CP_ERR_SECTION    f_n <= 0 or f_b <= 0
+ *   CP_ERR_RANGE      f_n or f_b > GSR_COEF_MAX, or max/min > GSR_ARCLEN_RATIO
+ * Cost: GSR_ARCLEN_N x 4 cp_sincos + sqrt (one-off). */
+CP_MUST_CHECK int gsr_arclen_init(struct gsr_arclen *t, cp_real f_n, cp_real f_b);
+
+/* Eccentric angle theta (rad) whose arc length from theta = 0 is f x perimeter (signed:
+ * positive towards +B). f in [-1, 1] (clamped; NaN gives NaN); result in [-2 pi, 2 pi],
+ * monotone in f; f = +-1/4, +-1/2, +-3/4, +-1 give the quarter angles (to rounding).
+ * Even spacing of n points on [theta_a, theta_b]: f_j = fa + j (fb - fa) / (n - 1) with
+ * fa, fb from gsr_arclen_frac. Cannot fail (t from a successful gsr_arclen_init). */
+cp_real gsr_arclen_angle(const struct gsr_arclen *t, cp_real f);
+
+/* The inverse: arc length from theta = 0 to theta, as a signed fraction of the perimeter
+ * (theta in [-2 pi, 2 pi], clamped; NaN gives NaN; result in [-1, 1]). */
+cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real theta);
+
 /* ---- the toolpath iterator (path.h) ---- */
 struct gsr_path {
     struct gsr g;

@@ -228,3 +228,53 @@ double ref_gsr_psi(double theta)
     }
     return q + 0.5 * (1.0 + tan((theta - q * RPI / 2.0 - RPI / 4.0) / 2.0) / tan(RPI / 8.0));
 }
+
+/* ---- ellipse arc length (checks gsr_arclen_*): adaptive Simpson and the AGM ---- */
+
+static double arc_sp(double a, double b, double th)
+{
+    return hypot(a * sin(th), b * cos(th));
+}
+
+/* One adaptive Simpson level on [x0, x1] (fm the speed at the midpoint, whole the
+ * Simpson value of the panel); Richardson-corrected on acceptance. */
+static double arc_simpson(double a, double b, double x0, double x1, double f0, double fm,
+                          double f1, double whole, double tol, int depth)
+{
+    double m = 0.5 * (x0 + x1), l = 0.5 * (x0 + m), r = 0.5 * (m + x1);
+    double fl = arc_sp(a, b, l), fr = arc_sp(a, b, r);
+    double sl = (m - x0) / 6.0 * (f0 + 4.0 * fl + fm), sr = (x1 - m) / 6.0 * (fm + 4.0 * fr + f1);
+    double d = sl + sr - whole;
+    if (depth <= 0 || fabs(d) <= 15.0 * tol) {
+        return sl + sr + d / 15.0;
+    }
+    return arc_simpson(a, b, x0, m, f0, fl, fm, sl, 0.5 * tol, depth - 1) +
+           arc_simpson(a, b, m, x1, fm, fr, f1, sr, 0.5 * tol, depth - 1);
+}
+
+double ref_gsr_arc(double a, double b, double th0, double th1, double tol)
+{
+    double f0 = arc_sp(a, b, th0), f1 = arc_sp(a, b, th1), fm = arc_sp(a, b, 0.5 * (th0 + th1));
+    if (th1 == th0) {
+        return 0.0;
+    }
+    return arc_simpson(a, b, th0, th1, f0, fm, f1, (th1 - th0) / 6.0 * (f0 + 4.0 * fm + f1), tol,
+                       48);
+}
+
+double ref_gsr_perimeter(double a, double b)
+{
+    /* P = 4 A E(e), A = max, E(k) = K(k) (1 - sum_n 2^(n-1) c_n^2), K = pi / (2 AGM(1, k')),
+     * a_0 = 1, b_0 = k' = B / A, c_0 = k, c_(n+1) = (a_n - b_n) / 2 */
+    double A = a > b ? a : b, kp = (a > b ? b : a) / A;
+    double an = 1.0, bn = kp, sum = 0.5 * (1.0 - kp * kp), w = 0.5;
+    int n;
+    for (n = 0; n < 12; n++) {
+        double c = 0.5 * (an - bn), a1 = 0.5 * (an + bn);
+        bn = sqrt(an * bn);
+        an = a1;
+        w *= 2.0;
+        sum += w * c * c;
+    }
+    return 4.0 * A * (RPI / (2.0 * an)) * (1.0 - sum);
+}

@@ -56,4 +56,10 @@ void ref_gsr_normal(const struct ref_gsr *g, double u, double theta, double n[3]
 double ref_gsr_theta(double psi);
 double ref_gsr_psi(double theta);
 
+/* Arc length of the ellipse (a cos t, b sin t) from th0 to th1 by adaptive Simpson
+ * (absolute tolerance tol, Richardson-corrected panels), and its perimeter by the
+ * arithmetic-geometric mean (complete elliptic integral E, ~1e-16 relative). */
+double ref_gsr_arc(double a, double b, double th0, double th1, double tol);
+double ref_gsr_perimeter(double a, double b);
+
 #endif /* REF_GSR_H */

@@ -735,3 +735,129 @@ int test_gsr_job(void)
     }
     return 0;
 }
+
+/* ---- even arc length on a section (gsr_arclen_*, C.2 "Speed") ---- */
+
+#ifdef __arm__ /* the M4F runs the float build with soft doubles: a lighter reference */
+#define ARC_M 16
+#define ARC_REF_TOL 1e-11
+#else
+#define ARC_M 40
+#define ARC_REF_TOL 1e-15
+#endif
+#if CP_REAL_DOUBLE
+#define ARC_TOL 1e-9 /* x perimeter */
+#else
+#define ARC_TOL 4e-6
+#endif
+
+/* Chord ratio max/min of the polyline through n points (a cos th_j, b sin th_j). */
+static double chord_ratio(double a, double b, const double *th, unsigned n)
+{
+    double lo = 1e300, hi = 0.0;
+    unsigned j;
+    for (j = 1; j < n; j++) {
+        double dx = a * (cos(th[j]) - cos(th[j - 1u])), dy = b * (sin(th[j]) - sin(th[j - 1u]));
+        double c = sqrt(dx * dx + dy * dy);
+        lo = c < lo ? c : lo;
+        hi = c > hi ? c : hi;
+    }
+    return hi / lo;
+}
+
+/* Worst |s(theta(f)) - f P| / P over f = j / ARC_M (and the round trip of gsr_arclen_frac)
+ * of one section, against adaptive Simpson and the AGM perimeter. */
+static int arc_case(double a, double b, double *err, double *rt)
+{
+    struct gsr_arclen t;
+    double pr = ref_gsr_perimeter(a, b), s = 0.0, thp = 0.0;
+    int j;
+    CHECK_EQ_INT(gsr_arclen_init(&t, (cp_real)a, (cp_real)b), CP_OK);
+    CHECK_NEAR(4.0 * (double)t.lq, pr, 0.0, ARC_TOL);
+    *err = fabs(4.0 * (double)t.lq - pr) / pr;
+    *rt = 0.0;
+    for (j = 0; j <= ARC_M; j++) {
+        double f = (double)j / ARC_M, th = (double)gsr_arclen_angle(&t, (cp_real)f), e, fr;
+        CHECK(th >= thp);                                              /* monotone */
+        CHECK(gsr_arclen_angle(&t, (cp_real)-f) == (cp_real)-th);      /* odd, bit for bit */
+        s += ref_gsr_arc(a, b, thp, th, ARC_REF_TOL * pr);
+        e = fabs(s - f * pr) / pr;
+        *err = e > *err ? e : *err;
+        fr = (double)gsr_arclen_frac(&t, (cp_real)th);
+        e = fabs(fr - s / pr);
+        *rt = e > *rt ? e : *rt;
+        CHECK_NEAR(s, f * pr, ARC_TOL * pr, 0.0);
+        CHECK_NEAR(fr, s / pr, ARC_TOL, 0.0);
+        thp = th;
+    }
+    CHECK_NEAR(thp, 2.0 * PI_D, 4.0 * CP_REAL_EPS, 0.0);
+    return 0;
+}
+
+int test_gsr_arclen(void)
+{
+    static const double ab[][2] = {{1.7, 0.95}, {0.95, 1.7}, {1.0, 1.0}, {4.0, 1.0}, {1.0, 16.0}};
+    struct gsr_arclen t;
+    double th[17], err, rt, worst = 0.0, r;
+    unsigned i, j;
+    int rc;
+    /* rejections */
+    CHECK_EQ_INT(gsr_arclen_init(NULL, CP_R(1.0), CP_R(1.0)), CP_ERR_INVAL);
+    CHECK_EQ_INT(gsr_arclen_init(&t, (cp_real)NAN, CP_R(1.0)), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(1.0), (cp_real)INFINITY), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(0.0), CP_R(1.0)), CP_ERR_SECTION);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(1.0), CP_R(-1.0)), CP_ERR_SECTION);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(2.0e4), CP_R(2.0e4)), CP_ERR_RANGE);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(1.0), CP_R(16.5)), CP_ERR_RANGE);
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(16.0), CP_R(1.0)), CP_OK);
+    CHECK(sizeof t <= (CP_REAL_DOUBLE ? 600u : 300u));
+    /* accuracy against the independent double reference */
+    for (i = 0; i < sizeof ab / sizeof ab[0]; i++) {
+        rc = arc_case(ab[i][0], ab[i][1], &err, &rt);
+        if (rc != 0) {
+            printf("  section %g x %g\n", ab[i][0], ab[i][1]);
+            return rc;
+        }
+        TEST_NOTE("arclen %g x %g: |s(theta(f)) - f P| / P <= %.2g, frac round trip %.2g\n",
+                  ab[i][0], ab[i][1], err, rt);
+        worst = err > worst ? err : worst;
+    }
+    /* the clamps, NaN, quarter angles */
+    CHECK_EQ_INT(gsr_arclen_init(&t, CP_R(1.7), CP_R(0.95)), CP_OK);
+    CHECK(gsr_arclen_angle(&t, CP_R(2.0)) == gsr_arclen_angle(&t, CP_R(1.0)));
+    CHECK(gsr_arclen_angle(&t, CP_R(-3.0)) == gsr_arclen_angle(&t, CP_R(-1.0)));
+    CHECK(gsr_arclen_angle(&t, (cp_real)NAN) != gsr_arclen_angle(&t, (cp_real)NAN));
+    CHECK(gsr_arclen_frac(&t, (cp_real)NAN) != gsr_arclen_frac(&t, (cp_real)NAN));
+    CHECK(gsr_arclen_frac(&t, CP_R(9.0)) == gsr_arclen_frac(&t, CP_R(2.0) * CP_PI));
+    for (j = 0; j <= 4u; j++) {
+        CHECK_NEAR(gsr_arclen_angle(&t, (cp_real)j / CP_R(4.0)), j * PI_D / 2.0,
+                   8.0 * CP_REAL_EPS, 0.0);
+    }
+    /* C.2: 16 steps on the quarter of the G1 section 1.7 x 0.95 */
+    for (j = 0; j <= 16u; j++) {
+        th[j] = j * PI_D / 32.0;
+    }
+    r = chord_ratio(1.7, 0.95, th, 17u);
+    TEST_NOTE("quarter 1.7 x 0.95, 16 steps, chord max/min: trig uniform %.4f\n", r);
+    CHECK_NEAR(r, 1.783, 1e-3, 0.0);
+    for (j = 0; j <= 16u; j++) {
+        cp_real cx, cy;
+        gsr_unit_rational((cp_real)j / CP_R(16.0), &cx, &cy);
+        th[j] = atan2((double)cy, (double)cx); /* eccentric angle of the unit-circle point */
+    }
+    r = chord_ratio(1.7, 0.95, th, 17u);
+    TEST_NOTE("  rational uniform %.4f\n", r);
+    CHECK_NEAR(r, 1.878, 1e-3, 0.0);
+    for (j = 0; j <= 16u; j++) {
+        th[j] = (double)gsr_arclen_angle(&t, (cp_real)j / CP_R(64.0));
+    }
+    r = chord_ratio(1.7, 0.95, th, 17u);
+    TEST_NOTE("  arc-length table %.6f (16 equal arcs; the rest is chord vs arc)\n", r);
+    CHECK(r < 1.003);
+    for (j = 0; j <= 16u; j++) {
+        th[j] = (double)gsr_arclen_angle(&t, (cp_real)j / CP_R(16.0));
+    }
+    TEST_NOTE("  full ellipse, 16 equal arcs: chord max/min %.6f\n", chord_ratio(1.7, 0.95, th, 17u));
+    TEST_NOTE("arclen worst %.2g of the perimeter (%s)\n", worst, CP_REAL_NAME);
+    return 0;
+}
