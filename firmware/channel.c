@@ -289,6 +289,11 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     js = v[Q_JI] + v[Q_JII];
     qq = js / (kk[1] * pp);
     lq = (dv[Q_JI] + dv[Q_JII]) / js - kk[3] * dv[Q_N] - lp; /* Q'/Q */
+    /* Q <= 0 (J_I + J_II <= 0: spline overshoot) or NaN is no section: rejected
+     * (CP_ERR_AREA_LAW by the init walks); 0 < Q < 2P is clamped to a = b and counted */
+    if (!(qq > CP_R(0.0))) {
+        r->flags |= CHANNEL_ROW_BAD_LAW;
+    }
     if (qq < CP_R(2.0) * pp) {
         qq = CP_R(2.0) * pp;
         r->flags |= CHANNEL_ROW_CLAMP;
@@ -718,7 +723,7 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
     const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
     uint32_t k, cnt;
     unsigned c, kind = 0u;
-    cp->steps = (uint16_t)(2u * seg[0]);
+    cp->steps = 2u * seg[0]; /* up to 2 CP_MAX_STEPS: uint32_t */
     cp->link = (uint16_t)(2u * seg[1] - 1u);
     cnt = (uint32_t)cp->n * (2u * seg[0] + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
     sag[0] = sag[1] = CP_R(0.0);
@@ -828,7 +833,7 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     tol[1] = rs->tol > CP_R(0.0) ? rs->tol : CP_R(0.001);
     seg[0] = fix[0] ? fix[0] : 32u;
     seg[1] = fix[1] ? fix[1] : 1u;
-    for (it = 0;; it++) {
+    for (it = 0; it <= 4u; it++) { /* it == 4 either breaks or returns CP_ERR_TOL */
         unsigned done = 1u;
         err = walk(cp, seg, sag);
         if (err != CP_OK) {
@@ -856,7 +861,10 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
             break;
         }
     }
-    cp->steps = (uint16_t)seg[0];
+    if (it > 4u) { /* not reached (see the loop header); a guard for the fixed bound */
+        return CP_ERR_TOL;
+    }
+    cp->steps = seg[0];
     cp->link = (uint16_t)(seg[1] - 1u);
     cp->count = (uint32_t)cp->n * ((uint32_t)cp->steps + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
     return CP_OK;

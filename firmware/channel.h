@@ -20,8 +20,9 @@
  *             K_J(n) = Gamma(3/n) Gamma(1/n) / (n Gamma(4/n)) (J_x = a b^3 K_J, about the
  *             a axis) (B11), alpha_i = atan2(x_i.e2, x_i.e1) unwrapped mod pi.
  *   section   at any u in closed form (B.2 step 6): P = S/K_S = ab, Q = (J_I + J_II)/(K_J P)
- *             = a^2 + b^2 (Q < 2P clamped and counted), a >= b, alpha = 1/2 atan2(2 J_I,II,
- *             J_II - J_I) + k pi nearest the linear blend of the node angles.
+ *             = a^2 + b^2 (0 < Q < 2P clamped to a = b and counted; Q <= 0 rejected),
+ *             a >= b, alpha = 1/2 atan2(2 J_I,II, J_II - J_I) + k pi nearest the linear
+ *             blend of the node angles.
  *   point     P(u, w) = L + (X cos alpha - Y sin alpha) e1 + (X sin alpha + Y cos alpha) e2,
  *             X = a sgn(cos w)|cos w|^(2/n), Y = b sgn(sin w)|sin w|^(2/n) (B10, B12), and
  *             the unit normal from the exact partial derivatives (outward: away from L).
@@ -54,7 +55,10 @@
 #define CHANNEL_N_MAX CP_R(100.0)
 /* Largest |coordinate| of a centre and largest semi-axis, mm. */
 #define CHANNEL_COORD_MAX CP_R(1.0e4)
-/* Orientation rows must be unit and orthogonal to this (then re-orthonormalised). */
+/* Orientation rows must be unit and orthogonal to this. They are used as given (not
+ * re-orthonormalised): the guide tangent is d_i z_i normalised, and the node angle alpha_i
+ * takes only the direction of x (or z x x) in the node frame, so a deviation within the
+ * tolerance moves alpha_i by ~1e-4 rad at most. */
 #define CHANNEL_AXES_TOL CP_R(1.0e-4)
 /* Section plane containing the chord to a neighbour: |z.chord|/|chord| below this. */
 #define CHANNEL_PLANE_TOL CP_R(1.0e-3)
@@ -108,21 +112,28 @@ struct channel_row {
     uint8_t flags;              /* CHANNEL_ROW_* */
 };
 
-#define CHANNEL_ROW_CLAMP 0x01u    /* Q < 2P: clamped to a = b */
-#define CHANNEL_ROW_BAD_LAW 0x02u  /* S <= 0 or n < 1 (CP_ERR_AREA_LAW) */
+#define CHANNEL_ROW_CLAMP 0x01u    /* Q < 2P: clamped to a = b (counted, struct channel) */
+#define CHANNEL_ROW_BAD_LAW 0x02u  /* S <= 0, n < 1, or Q <= 0 (J_I + J_II <= 0: spline
+                                      overshoot; no section): CP_ERR_AREA_LAW */
 #define CHANNEL_ROW_FRAME 0x04u    /* |e_y x tau| <= CHANNEL_FRAME_TOL (CP_ERR_FRAME_REF) */
 
 /* The model after channel_init (node data and spline second derivatives). */
 struct channel {
     const struct channel_cfg *cfg; /* the sections (must outlive this struct) */
     uint8_t ns;                    /* N */
-    uint16_t clamps;               /* Q < 2P clamps met by the init walks, samples (a warning) */
+    uint16_t clamps;               /* 0 < Q < 2P clamps (to a = b) met by the init walks of
+                                      channel_path_init, in walked samples, saturating at
+                                      65535 (a warning: the caller reads it after a
+                                      successful init, e.g. channel_path.ch.clamps); Q <= 0
+                                      is rejected instead (CP_ERR_AREA_LAW) */
     cp_real d[CP_MAX_SECTIONS];    /* signed tangent magnitude: M_i = d_i z_i, mm */
     cp_real acc[CP_MAX_SECTIONS][3]; /* node second derivatives A_i (x, y, z), mm */
     cp_real al[CP_MAX_SECTIONS];   /* node angles alpha_i, unwrapped, rad */
     cp_real y[5][CP_MAX_SECTIONS]; /* node values of S, n, J_I, J_II, J_I,II */
-    cp_real y2[5][CP_MAX_SECTIONS - 2]; /* their natural-spline second derivatives at the
-                                         interior nodes 1..N-2 (0 at both ends) */
+    cp_real y2[5][CP_MAX_SECTIONS > 2 ? CP_MAX_SECTIONS - 2 : 1]; /* their natural-spline
+                                         second derivatives at the interior nodes 1..N-2 (0
+                                         at both ends; at least 1 column: C99 forbids a
+                                         zero-length array, unused when N = 2) */
 };
 
 /* Orientation rows of section s from angles (radians) in the given order (enum
@@ -179,11 +190,17 @@ CP_MUST_CHECK int channel_wire_inertia(const struct channel_section *s, uint32_t
 struct channel_path {
     struct channel ch;
     struct channel_row row; /* cached row (row.u = -1: none) */
-    uint8_t mode, output;
-    uint16_t n, steps, link;
+    uint8_t mode;           /* enum toolpath_mode: LINES (along u) or CIRCLES (along w) */
+    uint8_t output;         /* enum toolpath_output: SURFACE, CENTRE or TIP */
+    uint16_t n;             /* lines / rings, 1..CP_MAX_LINES */
+    uint16_t link;          /* link points between consecutive lines/rings, 0..CP_MAX_LINK
+                               (init walks: up to 2 CP_MAX_LINK + 1) */
+    uint32_t steps;         /* segments per line/ring (points: steps + 1), 1..CP_MAX_STEPS;
+                               uint32_t: the init walks double it (up to 2 CP_MAX_STEPS) */
     cp_real lo[2], hi[2];   /* ranges of u (0, N-1) and w (u0, u1, rad) */
     cp_real tool_r;         /* tool radius (mm) */
-    uint32_t count, k;
+    uint32_t count;         /* points of the whole path (0 before a successful init) */
+    uint32_t k;             /* next point index, 0..count (points emitted so far) */
 };
 
 /* Validate the geometry (channel_init) and the raster, walk the evaluation grid (whole
@@ -199,10 +216,14 @@ struct channel_path {
  *   CP_ERR_INVAL     mode/output out of range, a tool radius with OUT_SURFACE
  *   CP_ERR_NONFINITE u0, u1, tol or tool_r      CP_ERR_RANGE  as toolpath_init
  *   CP_ERR_TOO_MANY  n, steps above the maxima
- *   CP_ERR_TOOL      tool_r < 0, or the tool-centre path folds back (tool radius above the
- *                    wall's radius of curvature) on a walk (grid rings included)
+ *   CP_ERR_TOOL      tool_r < 0 or tool_r > CHANNEL_COORD_MAX, or the tool-centre path folds
+ *                    back (tool radius above the wall's radius of curvature) on a walk (grid
+ *                    rings included)
  *   CP_ERR_TOL       tol needs more than CP_MAX_STEPS steps / CP_MAX_LINK link points
- *   CP_ERR_FOLD, CP_ERR_AREA_LAW, CP_ERR_FRAME_REF  also on the walk
+ *   CP_ERR_AREA_LAW  on a walk: S <= 0, n < 1, or Q = (J_I + J_II)/(K_J P) <= 0 (the laws'
+ *                    splines overshoot into no section); 0 < Q < 2P is clamped to a = b and
+ *                    counted instead (cp->ch.clamps, a warning)
+ *   CP_ERR_FOLD, CP_ERR_FRAME_REF  also on the walk
  *   CP_ERR_NUMERIC   a non-finite value on the walk */
 CP_MUST_CHECK int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
                                     const struct toolpath_cfg *raster);

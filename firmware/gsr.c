@@ -48,6 +48,9 @@
 #define TAN_PI_8 CP_R(0.41421356237309504880)
 #define SAG_MARGIN CP_R(0.9)
 
+/* gsr_init reads cfg->ref as 3 consecutive reals (&ref.x) */
+CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
+
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
 
@@ -263,7 +266,8 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
             if (i > 0u) {
                 w = cp_fabs(rmf_phi(g, g->t0 + span * ((cp_real)(i - GSR_RMF_SUB / 2u) /
                                                         (cp_real)total)) - pm);
-                worst = w > worst ? w : worst;
+                /* NaN is sticky (w > NaN is false): a NaN error fails CP_ERR_TOL */
+                worst = (w > worst || !cp_isfinite(w)) ? w : worst;
             }
         }
     }
@@ -576,7 +580,8 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
     int err = CP_OK;
     if (x[0] != it->su) {
         err = sec_eval(&it->g, x[0], &it->sec);
-        it->su = x[0];
+        /* key the cache only on success: a retry at the same u must evaluate again */
+        it->su = err == CP_OK ? x[0] : CP_R(-1.0);
     }
     if (x[1] != it->cs) {
         if (it->g.section == GSR_SECTION_TRIG) {

@@ -130,8 +130,11 @@ struct gsr_cfg {
 
 /* The validated model. Keeps a pointer to the cfg, which must outlive it unchanged. */
 struct gsr {
-    const struct gsr_cfg *cfg;
-    uint8_t frame, section;
+    const struct gsr_cfg *cfg; /* the geometry (caller-owned, read by every evaluation) */
+    uint8_t frame;             /* copy of cfg->frame: enum gsr_frame_kind */
+    uint8_t section;           /* copy of cfg->section: enum gsr_section_kind (RATIONAL:
+                                  section parameter psi in [-2, 2]; TRIG: eccentric angle,
+                                  rad) */
     cp_real t0, t1;           /* f_t(0), f_t(1): the t range of the centre, t0 < t1 */
     cp_real d1;               /* bound of |C'| from the coefficients (scale of the checks) */
     cp_real rmax;             /* max(f_N, f_B) over the init samples, mm */

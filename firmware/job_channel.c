@@ -8,7 +8,9 @@
  *                             axis (the a axis) and section normal (unit, orthogonal, 1e-4)
  *   SECTIONS CLEAR            forget the sections
  * Each command checks its section at once (channel_section_check: error:6 range, 28 a or
- * b <= 0, 32 n < 1, 36 a = b with n != 2); RUN checks the geometry (channel_path_init).
+ * b <= 0, 32 n < 1, 36 a = b with n != 2); SECTION beyond CP_MAX_SECTIONS sections answers
+ * error:14 (too many), AXES before any SECTION error:31 (too few: nothing to apply to); RUN
+ * checks the geometry (channel_path_init).
  */
 #include "job.h"
 #include "parse.h"

@@ -361,6 +361,37 @@ int test_channel_rejects(void)
     g.s[3].n = CP_R(60.0); /* the natural spline of n undershoots below 1 on [0, 1] */
     CHECK_EQ_INT(channel_init(&ch, &g), CP_OK);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_AREA_LAW);
+    /* B5: the same area (S = ab K_S) everywhere, but J_I + J_II = ab (a^2 + b^2) K_J jumps 55x
+     * from sections 0, 1 to 2, 3: its natural spline overshoots below 0 on [0, 1]: Q <= 0 is
+     * no section (CP_ERR_AREA_LAW before anything streams, not a clamp to a circle) */
+    duct(&g);
+    g.count = 4;
+    g.s[3] = g.s[2];
+    g.s[3].c.x = CP_R(30.0);
+    g.s[0].a = g.s[1].a = CP_R(1.0);
+    g.s[0].b = g.s[1].b = CP_R(0.9);
+    g.s[2].a = g.s[3].a = CP_R(10.0);
+    g.s[2].b = g.s[3].b = CP_R(0.09);
+    CHECK_EQ_INT(channel_init(&ch, &g), CP_OK);
+    CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_AREA_LAW);
+    /* a milder jump (J ratio ~ 2): Q stays > 0, the small Q < 2P dips are clamped and counted
+     * (a warning the caller reads in ch.clamps) */
+    g.s[2].a = g.s[3].a = CP_R(1.8);
+    g.s[2].b = g.s[3].b = CP_R(0.5);
+    {
+        static struct channel_path cp;
+        CHECK_EQ_INT(channel_path_init(&cp, &g, &rs), CP_OK);
+        TEST_NOTE("channel mild J overshoot: clamps %u\n", (unsigned)cp.ch.clamps);
+        CHECK(cp.ch.clamps > 0u);
+    }
+    /* B6: the init walks double the step count (up to 2 x 65535 with CP_MAX_STEPS = 65535):
+     * the iterator's field must hold it */
+    {
+        static struct channel_path cp;
+        volatile uint32_t twice = 2u * 65535u;
+        cp.steps = twice;
+        CHECK(cp.steps == 131070u);
+    }
     /* the paper's example read with the printed rotation order: the sweep folds (B5) */
     example(&g, NULL, 1);
     CHECK_EQ_INT(channel_init(&ch, &g), CP_OK);

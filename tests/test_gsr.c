@@ -424,6 +424,20 @@ int test_gsr_iterator(void)
         CHECK(wp <= (CP_REAL_DOUBLE ? 1e-9 : 1e-3));
         CHECK(wc <= (double)rc.tol);
     }
+    /* B3: a section that failed is not cached: a retried gsr_path_next at the same k
+     * evaluates it again (the failure is forced by changing the cfg under the iterator) */
+    {
+        struct toolpath_pt q0, q1;
+        cp_real keep = gc.r[0][0];
+        CHECK_EQ_INT(gsr_path_seek(&gp, 1u), CP_OK);
+        CHECK_EQ_INT(gsr_path_next(&gp, &q0), CP_OK);
+        CHECK_EQ_INT(gsr_path_seek(&gp, 1u), CP_OK);
+        gc.r[0][0] = CP_R(-100.0); /* f_N < 0 */
+        CHECK_EQ_INT(gsr_path_next(&gp, &q1), CP_ERR_SECTION);
+        gc.r[0][0] = keep;
+        CHECK_EQ_INT(gsr_path_next(&gp, &q1), CP_OK);
+        CHECK(memcmp(&q1.p, &q0.p, sizeof q0.p) == 0 && memcmp(&q1.n, &q0.n, sizeof q0.n) == 0);
+    }
     return 0;
 }
 
