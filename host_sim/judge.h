@@ -16,6 +16,7 @@
 #ifndef JUDGE_H
 #define JUDGE_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -31,5 +32,19 @@
 JUDGE_DECLARE(gsr)
 JUDGE_DECLARE(channel)
 JUDGE_DECLARE(drc)
+
+/* Helpers shared by the judges (judge_util.c). */
+#define JUDGE_MAX_TOKENS 24u
+/* Split a job line into at most JUDGE_MAX_TOKENS tokens (spaces, tabs, CR, LF; a token
+ * starting with '#' ends the line) in buf (>= strlen(line) + 1 bytes). Returns the
+ * count, or -1 if the line does not fit buf. */
+int judge_split(const char *line, char *buf, size_t bufsz, char **tok);
+/* 1 if token a is keyword b (any case). */
+int judge_kw(const char *a, const char *b);
+/* Parse tok[first .. first+n-1] as finite numbers into v. 0 on success, 1 if one is
+ * not a number or not finite. */
+int judge_nums(char **tok, unsigned first, unsigned n, double *v);
+/* Angle between two 3-vectors, degrees (atan2 of |a x b| and a.b: exact near 0). */
+double judge_angle_deg(const double *a, const double *b);
 
 #endif /* JUDGE_H */

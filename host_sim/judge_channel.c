@@ -60,45 +60,18 @@ void judge_channel_reset(void)
     jb.tol = 0.001;
 }
 
-static int kw(const char *a, const char *b)
-{
-    return strcasecmp(a, b) == 0;
-}
-
-static int nums(char **tok, unsigned first, unsigned n, double *v)
-{
-    unsigned i;
-    for (i = 0; i < n; i++) {
-        char *e;
-        v[i] = strtod(tok[first + i], &e);
-        if (*e != '\0' || !isfinite(v[i])) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 int judge_channel_job_line(const char *line)
 {
-    char buf[128], *tok[24], *p;
-    unsigned nt = 0;
+    char buf[128], *tok[JUDGE_MAX_TOKENS];
+    int r = judge_split(line, buf, sizeof buf, tok);
+    unsigned nt = r > 0 ? (unsigned)r : 0u;
     double v[9];
-    if (strlen(line) >= sizeof buf) {
-        return 0;
-    }
-    strcpy(buf, line);
-    for (p = strtok(buf, " \t\r\n"); p && nt < 24u; p = strtok(NULL, " \t\r\n")) {
-        if (p[0] == '#') {
-            break;
-        }
-        tok[nt++] = p;
-    }
     if (nt == 0u) {
         return 0;
     }
-    if (kw(tok[0], "SECTION")) {
+    if (judge_kw(tok[0], "SECTION")) {
         struct ref_ch_sec *s;
-        if (nt != 10u || nums(tok, 1u, 9u, v) || jb.ns >= JC_MAXSEC || !(v[0] > 0.0) ||
+        if (nt != 10u || judge_nums(tok, 1u, 9u, v) || jb.ns >= JC_MAXSEC || !(v[0] > 0.0) ||
             !(v[1] > 0.0) || !(v[2] >= 1.0)) {
             return 1;
         }
@@ -113,10 +86,10 @@ int judge_channel_job_line(const char *line)
                           s->z);
         return 0;
     }
-    if (kw(tok[0], "AXES")) {
+    if (judge_kw(tok[0], "AXES")) {
         struct ref_ch_sec *s;
         int k;
-        if (nt != 7u || nums(tok, 1u, 6u, v) || jb.ns == 0) {
+        if (nt != 7u || judge_nums(tok, 1u, 6u, v) || jb.ns == 0) {
             return 1;
         }
         s = &jb.s[jb.ns - 1];
@@ -126,36 +99,36 @@ int judge_channel_job_line(const char *line)
         }
         return 0;
     }
-    if (kw(tok[0], "SECTIONS")) {
-        if (nt != 2u || !kw(tok[1], "CLEAR")) {
+    if (judge_kw(tok[0], "SECTIONS")) {
+        if (nt != 2u || !judge_kw(tok[1], "CLEAR")) {
             return 1;
         }
         jb.ns = 0;
         return 0;
     }
-    if ((kw(tok[0], "LINES") || kw(tok[0], "CIRCLES")) && (nt == 4u || nt == 5u) &&
-        !nums(tok, 2u, 2u, v)) {
-        jb.mode = kw(tok[0], "CIRCLES");
+    if ((judge_kw(tok[0], "LINES") || judge_kw(tok[0], "CIRCLES")) && (nt == 4u || nt == 5u) &&
+        !judge_nums(tok, 2u, 2u, v)) {
+        jb.mode = judge_kw(tok[0], "CIRCLES");
         jb.n = atoi(tok[1]);
         jb.w0 = v[0] * JC_PI / 180.0;
         jb.w1 = v[1] * JC_PI / 180.0;
         return 0;
     }
-    if (kw(tok[0], "TOL") && nt == 2u && !nums(tok, 1u, 1u, v)) {
+    if (judge_kw(tok[0], "TOL") && nt == 2u && !judge_nums(tok, 1u, 1u, v)) {
         jb.tol = v[0] * 1e-3;
         return 0;
     }
-    if (kw(tok[0], "STEPS")) {
+    if (judge_kw(tok[0], "STEPS")) {
         jb.tol = 0.0; /* fixed steps: no chord check */
         return 0;
     }
-    if (kw(tok[0], "TOOL")) {
-        if (nt >= 2u && kw(tok[1], "NONE")) {
+    if (judge_kw(tok[0], "TOOL")) {
+        if (nt >= 2u && judge_kw(tok[1], "NONE")) {
             jb.tool_mode = 0;
             jb.tool = 0.0;
-        } else if (nt >= 3u && kw(tok[1], "BALL") && !nums(tok, 2u, 1u, v)) {
+        } else if (nt >= 3u && judge_kw(tok[1], "BALL") && !judge_nums(tok, 2u, 1u, v)) {
             jb.tool = v[0];
-            jb.tool_mode = (nt == 4u && !kw(tok[3], "TIP")) ? 2 : 1;
+            jb.tool_mode = (nt == 4u && !judge_kw(tok[3], "TIP")) ? 2 : 1;
         }
         return 0;
     }
@@ -229,17 +202,6 @@ static void place(uint32_t k, double *u, double *w, int *line)
     *line = link ? -1 : (int)j;
 }
 
-static double angle_deg(const double *a, const double *b)
-{
-    double c[3], s, d;
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-    s = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return atan2(s, d) * 180.0 / JC_PI;
-}
-
 void judge_channel_point(uint32_t k, double x, double y, double z, const double *n)
 {
     double u, w, pr[3], nr[3], g, surf[3], d[3], off;
@@ -269,7 +231,7 @@ void judge_channel_point(uint32_t k, double x, double y, double z, const double 
     }
     stat_add(1, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), k, JC_LIM_MM);
     if (n) {
-        stat_add(2, angle_deg(n, nr), k, JC_LIM_DEG);
+        stat_add(2, judge_angle_deg(n, nr), k, JC_LIM_DEG);
     }
     if (jb.tol > 0.0 && run.have_prev && line >= 0 && run.prev_line == line) {
         /* reference point at the middle parameter (tool offset along its normal) vs chord */

@@ -116,16 +116,10 @@ static int nums(char **tok, unsigned nt, unsigned first, unsigned n, double *v)
 
 int judge_gsr_job_line(const char *line)
 {
-    char buf[128], *tok[24], *p;
-    unsigned nt = 0, k;
+    char buf[128], *tok[JUDGE_MAX_TOKENS];
+    int r = judge_split(line, buf, sizeof buf, tok);
+    unsigned nt = r > 0 ? (unsigned)r : 0u, k;
     double v[7];
-    if (strlen(line) >= sizeof buf) {
-        return 0;
-    }
-    strcpy(buf, line);
-    for (p = strtok(buf, " \t\r\n"); p != NULL && nt < 24u; p = strtok(NULL, " \t\r\n")) {
-        tok[nt++] = p;
-    }
     if (nt < 2u) {
         return 0;
     }

@@ -1,0 +1,57 @@
+/* judge_util.c - helpers shared by the model judges (judge.h).
+ * SPDX-License-Identifier: MIT
+ */
+#include "judge.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+int judge_split(const char *line, char *buf, size_t bufsz, char **tok)
+{
+    char *p;
+    int nt = 0;
+    size_t n = strlen(line);
+    if (n >= bufsz) {
+        return -1;
+    }
+    memcpy(buf, line, n + 1u);
+    for (p = strtok(buf, " \t\r\n"); p != NULL && nt < (int)JUDGE_MAX_TOKENS;
+         p = strtok(NULL, " \t\r\n")) {
+        if (p[0] == '#') {
+            break;
+        }
+        tok[nt++] = p;
+    }
+    return nt;
+}
+
+int judge_kw(const char *a, const char *b)
+{
+    return strcasecmp(a, b) == 0;
+}
+
+int judge_nums(char **tok, unsigned first, unsigned n, double *v)
+{
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        char *e;
+        v[i] = strtod(tok[first + i], &e);
+        if (*e != '\0' || !isfinite(v[i])) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+double judge_angle_deg(const double *a, const double *b)
+{
+    double c[3], s, d;
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+    s = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return atan2(s, d) * (180.0 / 3.14159265358979323846);
+}
