@@ -283,7 +283,10 @@ static CP_NOINLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint3
  * Error of t_j: 2^-DRC_T_BISECT. The sweeps converge geometrically (measured: G2
  * residual <= 1e-14 relative after 40 sweeps in double on every test set).
  * End angles: N = 3 the circle through the three points (chord angle asin(L k / 2));
- * N >= 4 the neighbour segment's q scaled by the length ratio (<= 1). */
+ * N >= 4 the neighbour segment's q scaled by the length ratio (<= 1), the angle then
+ * bounded by the neighbour vertex's turn: |a0| <= |phi_1|, |b1| <= |phi_{N-2}| (drc.h,
+ * "End tangents": a steep curvature ratio next to a short chord would otherwise turn
+ * the end tangent past 90 deg, and the thickened curve would loop behind P_0). */
 static CP_NOINLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
                               struct drc_scratch *w)
 {
@@ -310,11 +313,10 @@ static CP_NOINLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
             cp_real lr = w->len[e ? n - 2u : 0u] / w->len[j];
             seg_k(seg_a(w, j), seg_b(w, j, n), w->len[j], &ka, &kb, &q);
             x = rq(q * (lr < ONE ? lr : ONE));
-            if (e) {
-                w->b1 = w->tp[n - 2u] * w->phi[n - 2u] * x;
-            } else {
-                w->a0 = (ONE - w->tp[1]) * w->phi[1] / x;
-            }
+            k = w->phi[e ? n - 2u : 1u]; /* the neighbour vertex's turn */
+            x = e ? w->tp[n - 2u] * k * x : (ONE - w->tp[1]) * k / x;
+            /* |end angle| <= |turn|: < 90 deg and convex (same sign), circles untouched */
+            *(e ? &w->b1 : &w->a0) = cp_fabs(x) > cp_fabs(k) ? k : x;
         }
         for (i = 1; i + 1u < n; i++) {
             cp_real lo = ZERO, hi = ONE, m;
@@ -1010,7 +1012,7 @@ static void line_start(struct drc_path *it, uint32_t jl)
     walk_to(it, 0u);
     it->s = it->dir ? it->s_tot : ZERO;
     it->lam = it->dir ? it->lam_tot : ZERO;
-    it->kap = ZERO;
+    it->kap = it->kend[it->dir]; /* the end leaf's curvature: the start point is checked */
     rlaw(it, it->dir ? ONE : ZERO, r);
     it->r_cur = r[0];
     label(it, jl, &it->lab_a, &it->lab_b);
@@ -1045,6 +1047,9 @@ static void line_step(struct drc_path *it)
     c = a->t.x * b->t.x + a->t.y * b->t.y;
     /* 2 sin(th/2) = 2 sin th / sqrt(2 (1 + cos th)); |th| < 90 deg so 1 + c > 1 */
     it->kap = TWO * (a->t.x * b->t.y - a->t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    if (it->pos == 1u) {
+        it->kend[it->dir] = it->kap; /* the end leaf of the line's start (init: kend[1]) */
+    }
     h *= ONE + (ONE - c) / CP_R(12.0);
     it->s += it->dir ? -h : h;
     rlaw(it, walk_sigma(it), r);
@@ -1081,7 +1086,7 @@ static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_re
     int end = (jl & 1u) == 0u;
     cp_real lam = end ? it->lam_tot : ZERO, qq, ha, ba, hb, bb, d;
     orig(it, end ? it->nseg : 0u, &q);
-    frame_at(it, &q, end ? ONE : ZERO, ZERO, f);
+    frame_at(it, &q, end ? ONE : ZERO, it->kend[end], f);
     qq = cp_sqrt(f->q2);
     label(it, jl, &ha, &ba);
     label(it, jl + 1u, &hb, &bb);
@@ -1099,7 +1104,9 @@ static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_re
  * (Lambda and s are sequential sums, so a seek re-walks, same bits). EDGE: the canal
  * point (surface, tool centre or tip). Checks (init; next() ignores them): R > 0, tool
  * radius < R, and regularity of the surface and of the tool's offset surface,
- * D b^2 > eps (q^2 b^2 + h^2), except at a line's first point (no leaf walked yet). */
+ * D b^2 > eps (q^2 b^2 + h^2), at every point (issue 6, B2): kappa is the curvature of
+ * the leaf walked into the point; at a line's first point and on the links (the end
+ * circles) the end leaf's, kend[], recorded by the forward walks. */
 static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
                                 struct toolpath_pt *pt)
 {
@@ -1148,17 +1155,24 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
         pt->p.z -= off;
     }
     den = DRC_CUSP_EPS * (f.q2 * b * b + h * h);
-    if (r != 0u && !(canal_regularity(&f, h, b, ZERO) > den &&
-                     canal_regularity(&f, h, b, rc->tool_r) > den)) {
+    if (!(canal_regularity(&f, h, b, ZERO) > den && canal_regularity(&f, h, b, rc->tool_r) > den)) {
         return CP_ERR_CUSP;
     }
     return CP_OK;
 }
 
+/* 1 if the point's position is finite (x - x is NaN for NaN and Inf). */
+static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
+{
+    cp_real x = pt->p.x + pt->p.y + pt->p.z;
+    return x - x == ZERO;
+}
+
 /* Walk every block's points r = lo..hi (no link after the last line; CURVE mode: one
  * line): the checks of point_at, finite points, and the largest sagitta of the lines
  * (deviation of each point from its neighbours' chord / 4: exact for circular arcs of
- * equal steps) into *sag. */
+ * equal steps) into *sag. A point equal to the one two steps back (zero chord, NaN
+ * sagitta) is CP_ERR_NUMERIC, not skipped: AUTO must not stop on an unmeasured line. */
 static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_real *sag)
 {
     struct toolpath_pt pt;
@@ -1170,7 +1184,7 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
     for (jl = 0; jl < (it->edge ? it->n : 1u) && !(lo > it->steps && jl + 1u == it->n); jl++) {
         for (r = lo; r <= hi; r++) {
             err = point_at(it, jl, r, &pt);
-            if (err == CP_OK && !cp_isfinite(pt.p.x + pt.p.y + pt.p.z)) {
+            if (err == CP_OK && !pt_finite(&pt)) {
                 err = CP_ERR_NUMERIC;
             }
             if (err != CP_OK) {
@@ -1182,6 +1196,9 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
                 x = dot3(&u, &u);
                 comb3(ONE, &v, -dot3(&u, &v) / x, &u, &v);
                 x = CP_R(0.25) * norm3(&v);
+                if (!(x >= ZERO)) { /* NaN: pt == q0 (a zero chord), no sagitta (B4) */
+                    return CP_ERR_NUMERIC;
+                }
                 *sag = x > *sag ? x : *sag;
             }
             q0 = q1;
@@ -1221,6 +1238,8 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
     it->link = 0u;
     it->s_tot = ONE;
     it->lam_tot = ZERO;
+    it->kend[0] = ZERO;
+    it->kend[1] = ZERO;
     it->q0 = ONE;
     for (i = 0; i < 4u; i++) {
         c[i] = rc->surf.rp[i];
@@ -1273,6 +1292,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         it->edge = 0u;
         err = walk(it, 0u, it->steps, &sag);
         it->s_tot = it->s;
+        it->kend[1] = it->kap; /* the last leaf's curvature (P_{N-1} end circle) */
         it->edge = (uint8_t)e;
         if (err == CP_OK && e) { /* every line (R, tool, cusp, sagitta): Lambda on the way */
             cp_real r[3];
@@ -1338,10 +1358,17 @@ int drc_path_seek(struct drc_path *it, uint32_t k)
 int drc_path_next(struct drc_path *it, struct toolpath_pt *pt)
 {
     uint32_t block = (uint32_t)it->steps + 1u + it->link;
+    struct toolpath_pt q;
     if (it->k >= it->count) {
         return CP_ERR_DONE;
     }
-    (void)point_at(it, it->k / block, it->k % block, pt);
+    (void)point_at(it, it->k / block, it->k % block, &q);
+    /* as the other models: a non-finite point is not written, k unchanged (n is
+     * finite with p: EDGE p = C + (R - off) n, CURVE p and t from the same angles) */
+    if (!pt_finite(&q)) {
+        return CP_ERR_NUMERIC;
+    }
+    *pt = q;
     it->k++;
     return CP_OK;
 }

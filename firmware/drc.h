@@ -15,12 +15,19 @@
  *           DRC_T_BISECT-step bisection per vertex, DRC_SWEEPS Gauss-Seidel sweeps;
  *           end tangents from the neighbour's curvature ratio (N >= 4) or the circle
  *           (N = 3); 3D: the A3 tilt chi out of the adjoining plane.
+ *           End tangents (spec clarification, issue 6 B1): the N >= 4 end angle
+ *           a_0 = b_0 / r(q*) of A.2 is bounded by the neighbour vertex's turn,
+ *           |a_0| <= |phi_1| (mirrored: |b_{N-2}| <= |phi_{N-2}|). A steep ratio next to
+ *           a short chord would otherwise turn the end tangent past 90 deg (the curve
+ *           looped behind P_0). The bound keeps every tangent < 90 deg from its chords
+ *           and the end segment convex; circles are untouched (there a_0 = b_0 <= phi_1).
+ *           tests/ref_drc.c implements the same rule.
  *   step 2  one pass acts on every segment (A, B, T_A, T_B) independently: closed
  *           form (planar: real exponential model, q by bisection) or the twisted
  *           exponential model (3D: complex z by DRC_NEWTON damped Newton steps).
  * Because step 2 is per segment, K passes over one original segment are a binary
  * subdivision tree of depth K: the iterator streams it leaf by leaf with an explicit
- * stack of K + 1 nodes (no buffer of the final size), and drc_thicken() does one
+ * stack of K nodes (stk[], no buffer of the final size), and drc_thicken() does one
  * whole pass in place for hosts and tests. Both call drc_insert(): the streamed
  * points equal the in-place ones bit for bit (tests/test_drc.c).
  *
@@ -117,13 +124,19 @@ struct drc_path {
     uint32_t count, k;                /* total points, points emitted */
     uint32_t pos;                     /* walk position along the line, 0..steps */
     uint16_t n, steps, link;          /* lines, steps per line (2^K (N-1)), link points */
-    uint8_t mode, edge, passes, dir, nseg;
+    uint8_t mode;                     /* TOOLPATH_LINES (path info; the only mode) */
+    uint8_t edge;                     /* 0 CURVE mode, 1 EDGE mode (g->edge) */
+    uint8_t passes;                   /* K in use (AUTO: the one found at init) */
+    uint8_t dir;                      /* walk direction: 0 P_0 -> P_{N-1}, 1 backward
+                                         (EDGE: odd lines, zigzag) */
+    uint8_t nseg;                     /* original segments, N - 1 */
     int32_t line;                     /* line of the walk (-1: none) */
     cp_real rp[4];                    /* radius law: COS b c k, else power-basis cubic (mm) */
     cp_real q0;                       /* sqrt(1 + (dR/ds)^2) at P_0 (labels) */
     cp_real lab_a, lab_b;             /* label of the walk's line */
     cp_real s, lam, r_cur, kap;       /* walk: arc length, Lambda, R, last leaf's curvature */
     cp_real s_tot, lam_tot;           /* at the last point (forward walk) */
+    cp_real kend[2];                  /* curvature of the first / last leaf (end circles) */
 };
 
 /* Size of K passes over n points: 2^K (n - 1) + 1, in *need.
@@ -150,7 +163,13 @@ int drc_is_planar(const struct drc_pt *buf, uint32_t n);
 
 /* Step 2 on one segment: the new point m between a and b (planar: 1 = the real model,
  * requires z == 0 everywhere; 0 = the 3D twisted model). Cannot fail: the inputs come
- * from drc_tangents or an earlier pass (chord > 0, tangent angles < 90 deg). */
+ * from drc_tangents or an earlier pass (chord > 0, tangent angles < 90 deg; the end
+ * angle bound above keeps that true for every planar set drc_tangents accepts).
+ * Tangent-triangle containment of m holds for convex segments (end angles of one turn,
+ * ratio within r(+-DRC_Q_MAX) ~ 1:48, where q is not clamped). A segment with an
+ * inflection or exactly one end angle on the chord (next to an inflection or a collinear
+ * run, where G2 was given up) takes the linear-curvature model of A.2, an S-curve by
+ * construction: its point lies off the (degenerate) triangle, as specified. */
 void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m);
 
 /* One pass in place: buf[0..n-1] (positions and tangents, e.g. from drc_tangents) ->
@@ -208,6 +227,9 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
  * the thickened curve, and in EDGE mode on every streamed line) is <= raster->tol.
  * raster fields used: CURVE mode: tol (AUTO only); EDGE mode: n, u0, u1 (ANGLE labels
  * only), link, tol, output, tool_r, surf.radius, surf.rp (the RADIUS law over sigma).
+ * EDGE mode needs a RADIUS (job.c job_ready: EDGE ON without RADIUS is an incomplete
+ * job, error:10); without LINES the raster default applies: one line at u = 0 (the
+ * contact curve C itself, where the fillet meets the plane).
  * Errors: the drc_tangents codes, plus
  *   CP_ERR_INVAL      g NULL, edge/labels/output out of range, tool with OUT_SURFACE
  *   CP_ERR_TOO_MANY   passes > CP_MAX_PASSES, n > CP_MAX_LINES, 2^K (N-1) > CP_MAX_STEPS
@@ -217,16 +239,22 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
  *   CP_ERR_TOOL       EDGE: tool_r >= min R
  *   CP_ERR_TOL        AUTO: the tolerance needs more than CP_MAX_PASSES passes, or a link
  *                     more than CP_MAX_LINK points
- *   CP_ERR_CUSP       EDGE: a streamed point on or beyond a cuspidal edge
- *   CP_ERR_NUMERIC    a non-finite value in the walk
+ *   CP_ERR_CUSP       EDGE: a streamed point on or beyond a cuspidal edge (every point,
+ *                     a line's first point and the link points included, with the
+ *                     curvature of the end leaf there)
+ *   CP_ERR_NUMERIC    a non-finite value in the walk, or a zero chord over two steps (a
+ *                     line doubling back: its sagitta is undefined)
  * Returns CP_OK; then drc_path_next yields exactly drc_path_count() points. */
 CP_MUST_CHECK int drc_path_init(struct drc_path *it, const struct drc_cfg *g,
                                 const struct toolpath_cfg *raster);
 
+/* Points drc_path_next yields in all (n lines of steps + 1 points, n - 1 links of
+ * link points); 0 until drc_path_init succeeded. */
 uint32_t drc_path_count(const struct drc_path *it);
 
 /* Next point (toolpath_pt conventions: line j or -1 for a link point, index).
- * Returns CP_OK or CP_ERR_DONE. */
+ * Returns CP_OK, CP_ERR_DONE, or CP_ERR_NUMERIC for a non-finite point (nothing
+ * written, the position unchanged; init has walked every point, so not expected). */
 int drc_path_next(struct drc_path *it, struct toolpath_pt *pt);
 
 /* Restart at point k (0 <= k <= count), bit for bit. CURVE mode: descends the tree

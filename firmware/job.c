@@ -95,6 +95,13 @@ void job_init(struct job *j)
 int job_ready(const struct job *j)
 {
     uint16_t nd = j->kind < PATH_KINDS ? need[j->kind] : 0u;
+#if PATH_HAVE_DRC
+    /* need[] is per kind: SURFACE DRC with EDGE ON also needs RADIUS (a fillet without
+     * a radius law is an incomplete job, error:10; LINES may default: one line, u = 0) */
+    if (j->kind == PATH_DRC && j->geom.drc.edge != 0u) {
+        nd |= JOB_HAVE_RADIUS;
+    }
+#endif
     return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
 }
 

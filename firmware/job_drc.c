@@ -8,7 +8,9 @@
  *                      the smallest K whose chord sagitta meets TOL (verified at RUN)
  *   EDGE ON | OFF      ON: a fillet along the sketched edge (canal surface of the RADIUS
  *                      law over the normalised arc length, lines of LINES n u0 u1, TOOL);
- *                      OFF (default): the thickened curve itself
+ *                      OFF (default): the thickened curve itself. EDGE ON needs RADIUS
+ *                      (RUN without it: error:10, job_ready); LINES defaults to one line
+ *                      at u = 0 (the contact curve, where the fillet meets the plane)
  * Arguments are checked at once (error:3 arity, 4/5 numbers, 6 range, 9 keyword); the
  * geometry at RUN (drc_path_init: error:31 fewer than 3 points, 33 coincident, 37 turn
  * >= 90 deg, 25 a point with z != 0 (the stream is planar), 17 TOL unreachable, ...).

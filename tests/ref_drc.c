@@ -256,6 +256,15 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
             aS = (1.0 - tj[1]) * phi[1] / rr(q * fmin(1.0, L[0] / L[1]));
             model_k(A_OF(n - 3), B_OF(n - 3), L[n - 3], &ka, &kb, &q);
             bE = tj[n - 2] * phi[n - 2] * rr(q * fmin(1.0, L[n - 2] / L[n - 3]));
+            /* spec clarification (issue 6, B1): the end angle never exceeds the turn of
+             * the neighbour vertex, so it stays < 90 deg and on the turn's side (a circle
+             * has aS = bE <= its turns: unchanged) */
+            if (fabs(aS) > fabs(phi[1])) {
+                aS = phi[1];
+            }
+            if (fabs(bE) > fabs(phi[n - 2])) {
+                bE = phi[n - 2];
+            }
         }
         for (i = 1; i + 1 < n; i++) {
             double x0 = 0.0, x1 = 1.0;

@@ -4,7 +4,9 @@
  */
 #include <string.h>
 
+#include "canal.h"
 #include "drc.h"
+#include "job.h"
 #include "path.h"
 #include "ref_canal.h"
 #include "ref_drc.h"
@@ -647,5 +649,225 @@ int test_drc_measures(void)
     CHECK_EQ_INT(m.signs, 3);
     CHECK(m.extrema >= 2u);
     CHECK_EQ_INT(drc_measure(vin, 2, 1, &m), CP_ERR_TOO_FEW);
+    return 0;
+}
+
+/* ---- issue 6 regressions ---- */
+
+/* B1: the end angle a_0 = b_0 / r(q*) of A.2 was unbounded: next to a short chord with
+ * a steep curvature ratio the tangent at P_0 pointed backwards (98 deg from chord 0) and
+ * the first segment's points looped behind P_0 (x = -0.40 on a 1.29 mm chord), with no
+ * error. Now |a_0| <= |phi_1|: the tangent is < 90 deg from the chord, every point of
+ * the segment projects into the chord, and the reference (same rule) agrees. */
+int test_drc_end_tangent_bound(void)
+{
+    static const double P[4][3] = {{0.0, 0.0, 0.0},
+                                   {0.555650651, 1.16622233, 0.0},
+                                   {0.594727933, 1.15016341, 0.0},
+                                   {1.47392833, 0.459962815, 0.0}};
+    double dx = P[1][0], dy = P[1][1], L = sqrt(dx * dx + dy * dy), c;
+    uint32_t m = 0, i;
+    int nr = 0;
+    CHECK_EQ_INT(lib_run(P, 4, 3, &m), CP_OK);
+    CHECK_EQ_INT(m, 25u);
+    c = ((double)lib[0].t.x * dx + (double)lib[0].t.y * dy) / L; /* cos(tangent, chord 0) */
+    TEST_NOTE("drc B1 set: tangent at P0 %.1f deg from chord 0 (%s)\n", acos(c) * 57.29578,
+              CP_REAL_NAME);
+    CHECK(c > 0.0);
+    for (i = 0; i <= 8u; i++) { /* segment 0: points 0..8 at K = 3 */
+        double s = ((double)lib[i].p.x * dx + (double)lib[i].p.y * dy) / L;
+        CHECK(s >= -1e-6 * L && s <= L * (1.0 + 1e-6));
+    }
+    CHECK_EQ_INT(triangle_violations(lib, m), 0);
+#if CP_REAL_DOUBLE
+    CHECK_EQ_INT(ref_drc_run(P, 4, 3, refp, reft, &nr), 0);
+    CHECK_EQ_INT(nr, 25);
+    for (i = 0; i < m; i++) {
+        CHECK_NEAR(lib[i].p.x, refp[i][0], 1e-9, 0);
+        CHECK_NEAR(lib[i].p.y, refp[i][1], 1e-9, 0);
+    }
+#else
+    (void)nr;
+#endif
+    return 0;
+}
+
+/* B1 property: random planar sets (3..12 points, chords 1:150, turns < 89 deg, either
+ * sign, so inflections and steep ratios), K = 4: every tangent of every pass within
+ * 90 deg of both its chords (no rejection is expected: the sets satisfy A.3); every
+ * point inserted into a convex segment (end angles of one turn, ratio <= 40, inside the
+ * unclamped q range) lies in its tangent triangle (double build: float leaves at K = 4
+ * are below the containment slack). Linear-model segments (an inflection, or one end
+ * angle on the chord) are S-curves by A.2 and are only counted (drc.h, drc_insert). */
+#define PROP_K 4
+int test_drc_random_planar(void)
+{
+    static struct drc_pt b[((uint32_t)(CP_MAX_DRC_POINTS - 1) << PROP_K) + 1u];
+    unsigned seed = 20240606u;
+    int set, sets = DRC_HEAVY ? 400 : 40, tan_bad = 0, tri_bad = 0, convex = 0, linear = 0;
+    for (set = 0; set < sets; set++) {
+        int n = 3 + (int)(test_prng(&seed) % (CP_MAX_DRC_POINTS - 2)), i, k;
+        double x = 0.0, y = 0.0, h = (double)(test_prng(&seed) % 6283u) * 1e-3;
+        uint32_t m = 0;
+        for (i = 0; i < n; i++) {
+            double u = (double)(test_prng(&seed) % 20001u) * 1e-4 - 1.0; /* -1..1 */
+            double v = (double)(test_prng(&seed) % 20001u) * 1e-4 - 1.0;
+            double len = exp(2.5 * u);
+            b[i].p.x = (cp_real)x;
+            b[i].p.y = (cp_real)y;
+            b[i].p.z = CP_R(0.0);
+            h += i > 0 ? v * 89.0 * 0.017453292519943295 : 0.0;
+            x += len * cos(h);
+            y += len * sin(h);
+        }
+        CHECK_EQ_INT(drc_run(b, (uint32_t)n, PROP_K, sizeof b / sizeof b[0], &m), CP_OK);
+        for (k = 0; k <= PROP_K; k++) {
+            uint32_t sd = (uint32_t)1u << (PROP_K - k), mk = ((uint32_t)(n - 1) << k) + 1u, j;
+            for (j = 0; j + 1u < mk; j++) {
+                const struct drc_pt *a = &b[j * sd], *e = &b[(j + 1u) * sd];
+                double dx = (double)e->p.x - (double)a->p.x, dy = (double)e->p.y - (double)a->p.y;
+                double ta = atan2(dx * (double)a->t.y - dy * (double)a->t.x,
+                                  dx * (double)a->t.x + dy * (double)a->t.y);
+                double tb = atan2(dx * (double)e->t.y - dy * (double)e->t.x,
+                                  dx * (double)e->t.x + dy * (double)e->t.y);
+                tan_bad += !(fabs(ta) < 1.5707963267948966 && fabs(tb) < 1.5707963267948966);
+                if (k == PROP_K) {
+                    continue;
+                }
+                if (ta * tb < 0.0 && fabs(tb) <= 40.0 * fabs(ta) && fabs(ta) <= 40.0 * fabs(tb)) {
+                    convex++;
+#if CP_REAL_DOUBLE
+                    tri_bad += !drc_in_triangle(a, e, &b[j * sd + sd / 2u].p);
+#endif
+                } else {
+                    linear++;
+                }
+            }
+        }
+    }
+    TEST_NOTE("drc random planar: %d sets, K = %d: tangents >= 90 deg from a chord %d, "
+              "triangle violations %d of %d convex inserts (%d linear-model inserts) (%s)\n",
+              sets, PROP_K, tan_bad, tri_bad, convex, linear, CP_REAL_NAME);
+    CHECK_EQ_INT(tan_bad, 0);
+    CHECK_EQ_INT(tri_bad, 0);
+    return 0;
+}
+
+/* B2: EDGE mode regularity at every point. A fillet R = 30 along a circle of radius 20
+ * (R kappa = 1.5: lines with cot(u/2) in 0.38..2.62, u = 42..138 deg, cross the
+ * cuspidal edge). (a) Lines at u = 20 and 170 deg are regular, but their link on the end
+ * circle passes u = 90 deg: it was checked with kappa = 0 (always regular for constant
+ * R) and streamed; now CP_ERR_CUSP. (b) R LINEAR 40 -> 4 along a 120 deg arc, K = 0,
+ * one line at u = 90 deg: only its first point is beyond the edge (D < 0 there, checked
+ * below independently with the exact curvature), and the first point of a line was
+ * exempt; now CP_ERR_CUSP. */
+int test_drc_edge_cusp_ends(void)
+{
+    struct toolpath_cfg rc;
+    struct canal_frame f;
+    double P[7][3];
+    cp_real q, cs, sn;
+    int i;
+    for (i = 0; i < 5; i++) {
+        double a = 0.25 * i;
+        P[i][0] = 20.0 * sin(a);
+        P[i][1] = 20.0 * (1.0 - cos(a));
+        P[i][2] = 0.0;
+    }
+    set_geom((const double(*)[3])P, 5, 2, 1);
+    raster_defaults(&rc);
+    rc.tol = CP_R(0.01);
+    rc.surf.radius = CANAL_R_CONST;
+    rc.surf.rp[0] = CP_R(30.0);
+    rc.u0 = CP_R(20.0) * CP_DEG2RAD;
+    rc.u1 = rc.u0;
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    rc.u0 = CP_R(170.0) * CP_DEG2RAD;
+    rc.u1 = rc.u0;
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    rc.n = 2;
+    rc.u0 = CP_R(20.0) * CP_DEG2RAD;
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_CUSP); /* the link */
+    rc.u0 = CP_R(-20.0) * CP_DEG2RAD; /* the convex side: no edge */
+    rc.u1 = CP_R(-170.0) * CP_DEG2RAD;
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    /* (b) */
+    for (i = 0; i < 3; i++) {
+        double a = 1.0471975511965976 * i;
+        P[i][0] = 20.0 * sin(a);
+        P[i][1] = 20.0 * (1.0 - cos(a));
+    }
+    set_geom((const double(*)[3])P, 3, 0, 1);
+    rc.n = 1;
+    rc.surf.radius = CANAL_R_LINEAR;
+    rc.surf.rp[0] = CP_R(40.0);
+    rc.surf.rp[1] = CP_R(4.0);
+    rc.u0 = CP_R(90.0) * CP_DEG2RAD;
+    rc.u1 = rc.u0;
+    /* D at the first point: R = 40, p = dR/ds = -36 / arc, kappa = 1/20, Lambda = 0,
+     * label (q cos 45, sin 45) */
+    memset(&f, 0, sizeof f);
+    f.r = CP_R(40.0);
+    f.p = CP_R(-36.0) / CP_R(41.887902047863905);
+    f.q2 = CP_R(1.0) + f.p * f.p;
+    f.kappa = CP_R(0.05);
+    f.tx = CP_R(1.0);
+    q = cp_sqrt(f.q2);
+    cp_sincos(CP_R(45.0) * CP_DEG2RAD, &sn, &cs);
+    CHECK(canal_regularity(&f, q * cs, sn, CP_R(0.0)) < CP_R(0.0));
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_CUSP);
+    rc.u0 = CP_R(20.0) * CP_DEG2RAD; /* away from the edge */
+    rc.u1 = rc.u0;
+    CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
+    return 0;
+}
+
+/* B4: THICKEN AUTO measured the sagitta |pt - q0|-normalised; a line point equal to the
+ * one two steps back gave NaN, which was ignored, so AUTO accepted K = 2 on a curve at
+ * the float resolution (chords of two ulps at 9000 mm). Now CP_ERR_NUMERIC. (The double
+ * build resolves these points: no coincidence, AUTO finds a K.) */
+int test_drc_sagitta_nan(void)
+{
+    static const double P[4][3] = {{9000.81152, 9000.4541, 0.0},
+                                   {9000.8125, 9000.45215, 0.0},
+                                   {9000.81348, 9000.4502, 0.0},
+                                   {9000.81445, 9000.44824, 0.0}};
+    struct toolpath_cfg rc;
+    int err;
+    set_geom(P, 4, DRC_PASSES_AUTO, 0);
+    raster_defaults(&rc);
+    rc.tol = CP_R(1e-5);
+    err = drc_path_init(&it, &gcfg, &rc);
+    TEST_NOTE("drc B4 set: AUTO init %d, K = %u (%s)\n", err, (unsigned)it.passes, CP_REAL_NAME);
+#if CP_REAL_DOUBLE
+    CHECK(err == CP_OK || err == CP_ERR_TOL);
+#else
+    CHECK_EQ_INT(err, CP_ERR_NUMERIC);
+#endif
+    return 0;
+}
+
+/* Readiness: SURFACE DRC with EDGE ON needs RADIUS (was error:11 at RUN from R = 0, now
+ * an incomplete job, error:10, before the geometry is touched); EDGE OFF does not. */
+static int drc_cmd(struct job *j, const char *s)
+{
+    return job_command(j, s, strlen(s));
+}
+
+int test_drc_job_ready(void)
+{
+    static struct job j;
+    job_init(&j);
+    CHECK_EQ_INT(drc_cmd(&j, "SURFACE DRC"), CP_ST_OK);
+    CHECK_EQ_INT(drc_cmd(&j, "POINT 0 0"), CP_ST_OK);
+    CHECK_EQ_INT(drc_cmd(&j, "POINT 10 1"), CP_ST_OK);
+    CHECK_EQ_INT(drc_cmd(&j, "POINT 19 4"), CP_ST_OK);
+    CHECK_EQ_INT(job_ready(&j), CP_ST_OK);
+    CHECK_EQ_INT(drc_cmd(&j, "EDGE ON"), CP_ST_OK);
+    CHECK_EQ_INT(job_ready(&j), CP_ST_NO_JOB);
+    CHECK_EQ_INT(drc_cmd(&j, "RADIUS CONST 3"), CP_ST_OK);
+    CHECK_EQ_INT(job_ready(&j), CP_ST_OK);
+    CHECK_EQ_INT(drc_cmd(&j, "EDGE OFF"), CP_ST_OK);
+    CHECK_EQ_INT(job_ready(&j), CP_ST_OK);
     return 0;
 }
