@@ -61,44 +61,17 @@ void judge_drc_reset(void)
     jb.lines = 1;
 }
 
-static int kw(const char *a, const char *b)
-{
-    return strcasecmp(a, b) == 0;
-}
-
-static int nums(char **tok, unsigned first, unsigned n, double *v)
-{
-    unsigned i;
-    for (i = 0; i < n; i++) {
-        char *e;
-        v[i] = strtod(tok[first + i], &e);
-        if (*e != '\0' || !isfinite(v[i])) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 int judge_drc_job_line(const char *line)
 {
-    char buf[128], *tok[24], *p;
-    unsigned nt = 0;
+    char buf[128], *tok[JUDGE_MAX_TOKENS];
+    int r = judge_split(line, buf, sizeof buf, tok);
+    unsigned nt = r > 0 ? (unsigned)r : 0u;
     double v[4];
-    if (strlen(line) >= sizeof buf) {
-        return 0;
-    }
-    strcpy(buf, line);
-    for (p = strtok(buf, " \t\r\n"); p && nt < 24u; p = strtok(NULL, " \t\r\n")) {
-        if (p[0] == '#') {
-            break;
-        }
-        tok[nt++] = p;
-    }
     if (nt == 0u) {
         return 0;
     }
-    if (kw(tok[0], "POINT")) {
-        if ((nt != 3u && nt != 4u) || nums(tok, 1u, nt - 1u, v)) {
+    if (judge_kw(tok[0], "POINT")) {
+        if ((nt != 3u && nt != 4u) || judge_nums(tok, 1u, nt - 1u, v)) {
             return 1;
         }
         if (jb.n >= 12) {
@@ -110,34 +83,34 @@ int judge_drc_job_line(const char *line)
         jb.n++;
         return 0;
     }
-    if (kw(tok[0], "POINTS")) {
-        if (nt != 2u || !kw(tok[1], "CLEAR")) {
+    if (judge_kw(tok[0], "POINTS")) {
+        if (nt != 2u || !judge_kw(tok[1], "CLEAR")) {
             return 1;
         }
         jb.n = 0;
         return 0;
     }
-    if (kw(tok[0], "THICKEN")) {
+    if (judge_kw(tok[0], "THICKEN")) {
         if (nt != 2u) {
             return 1;
         }
-        jb.k = kw(tok[1], "AUTO") ? -1 : atoi(tok[1]);
+        jb.k = judge_kw(tok[1], "AUTO") ? -1 : atoi(tok[1]);
         return 0;
     }
-    if (kw(tok[0], "EDGE")) {
-        if (nt != 2u || (!kw(tok[1], "ON") && !kw(tok[1], "OFF"))) {
+    if (judge_kw(tok[0], "EDGE")) {
+        if (nt != 2u || (!judge_kw(tok[1], "ON") && !judge_kw(tok[1], "OFF"))) {
             return 1;
         }
-        jb.edge = kw(tok[1], "ON");
+        jb.edge = judge_kw(tok[1], "ON");
         return 0;
     }
-    if (kw(tok[0], "RADIUS") && nt >= 3u) {
+    if (judge_kw(tok[0], "RADIUS") && nt >= 3u) {
         static const char *const names[4] = {"CONST", "LINEAR", "COS", "CUBIC"};
         int k;
         for (k = 0; k < 4; k++) {
-            if (kw(tok[1], names[k])) {
+            if (judge_kw(tok[1], names[k])) {
                 memset(jb.rp, 0, sizeof jb.rp);
-                if (nt - 2u > 4u || nums(tok, 2u, nt - 2u, jb.rp)) {
+                if (nt - 2u > 4u || judge_nums(tok, 2u, nt - 2u, jb.rp)) {
                     return 0; /* the canal judge reports the arity error */
                 }
                 jb.radius = k;
@@ -145,23 +118,23 @@ int judge_drc_job_line(const char *line)
         }
         return 0;
     }
-    if (kw(tok[0], "LINES") && nt == 4u && !nums(tok, 2u, 2u, v)) {
+    if (judge_kw(tok[0], "LINES") && nt == 4u && !judge_nums(tok, 2u, 2u, v)) {
         jb.lines = atoi(tok[1]);
         jb.u0 = v[0] * M_PI / 180.0;
         jb.u1 = v[1] * M_PI / 180.0;
         return 0;
     }
-    if (kw(tok[0], "TOOL")) {
-        if (nt >= 2u && kw(tok[1], "NONE")) {
+    if (judge_kw(tok[0], "TOOL")) {
+        if (nt >= 2u && judge_kw(tok[1], "NONE")) {
             jb.tool_mode = 0;
             jb.tool = 0.0;
-        } else if (nt >= 3u && kw(tok[1], "BALL") && !nums(tok, 2u, 1u, v)) {
+        } else if (nt >= 3u && judge_kw(tok[1], "BALL") && !judge_nums(tok, 2u, 1u, v)) {
             jb.tool = v[0];
-            jb.tool_mode = (nt == 4u && !kw(tok[3], "TIP")) ? 2 : 1;
+            jb.tool_mode = (nt == 4u && !judge_kw(tok[3], "TIP")) ? 2 : 1;
         }
         return 0;
     }
-    if (kw(tok[0], "CIRCLES")) {
+    if (judge_kw(tok[0], "CIRCLES")) {
         return -1; /* DRC streams LINES only */
     }
     return 0;
@@ -258,17 +231,6 @@ static void stat_add(int c, double v, uint32_t k, double lim)
     }
 }
 
-static double angle_deg(const double *a, const double *b)
-{
-    double c[3], s, d;
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-    s = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return atan2(s, d) * 180.0 / M_PI;
-}
-
 void judge_drc_point(uint32_t k, double x, double y, double z, const double *n)
 {
     uint32_t block, jl, r, i;
@@ -294,7 +256,7 @@ void judge_drc_point(uint32_t k, double x, double y, double z, const double *n)
         d[2] = z - rpts[r][2];
         stat_add(0, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), k, JD_LIM_MM);
         if (n) {
-            stat_add(1, angle_deg(n, rtan[r]), k, JD_LIM_DEG);
+            stat_add(1, judge_angle_deg(n, rtan[r]), k, JD_LIM_DEG);
         }
         return;
     }
@@ -321,7 +283,7 @@ void judge_drc_point(uint32_t k, double x, double y, double z, const double *n)
             nn[0] = v[0] / l;
             nn[1] = v[1] / l;
             nn[2] = v[2] / l;
-            stat_add(4, angle_deg(n, nn), k, JD_LIM_DEG);
+            stat_add(4, judge_angle_deg(n, nn), k, JD_LIM_DEG);
         }
         if (!link) {
             /* the contact-frame formula with the judge's Lambda */
