@@ -47,4 +47,17 @@ int judge_nums(char **tok, unsigned first, unsigned n, double *v);
 /* Angle between two 3-vectors, degrees (atan2 of |a x b| and a.b: exact near 0). */
 double judge_angle_deg(const double *a, const double *b);
 
+/* One check of a judge: max (and where), RMS, samples over the limit. */
+struct judge_stat {
+    double max, sum2;
+    unsigned long n, fails;
+    uint32_t worst; /* k of the max */
+};
+/* Add sample v of point k; lim <= 0: no limit (an INFO row). A NaN sample fails. */
+void judge_stat_add(struct judge_stat *s, double v, double lim, uint32_t k);
+/* Print the row "PASS|FAIL judge <model>-<name> max .. rms .. limit .. n=.. worst k=.." and
+ * count it; counted = 0 or no samples: an INFO row, not counted. */
+void judge_stat_row(FILE *f, int *passed, int *failed, const char *model, const char *name,
+                    const struct judge_stat *s, double lim, const char *unit, int counted);
+
 #endif /* JUDGE_H */

@@ -37,12 +37,7 @@ static struct {
 
 static struct ref_channel model;
 
-struct jstat {
-    double max;
-    unsigned long n, fails, worst;
-};
-
-static struct jstat st[4];
+static struct judge_stat st[4];
 static const char *const st_name[4] = {"surface", "line", "normal", "chord"};
 static unsigned runs, unchecked;
 static unsigned long cov_err, seen_pts;
@@ -162,15 +157,7 @@ void judge_channel_run_begin(uint32_t points, uint32_t first, int mode, unsigned
 
 static void stat_add(int c, double v, uint32_t k, double lim)
 {
-    struct jstat *s = &st[c];
-    s->n++;
-    if (v > s->max) {
-        s->max = v;
-        s->worst = k;
-    }
-    if (!(v <= lim)) {
-        s->fails++;
-    }
+    judge_stat_add(&st[c], v, lim, k);
 }
 
 static double frac(double lo, double hi, uint32_t num, uint32_t den)
@@ -282,22 +269,9 @@ void judge_channel_report(FILE *f, int *passed, int *failed)
     fprintf(f, "  judge channel: %u run(s), %lu points, reference tests/ref_channel.c\n", runs,
             seen_pts);
     for (c = 0; c < 4; c++) {
-        const struct jstat *s = &st[c];
-        int mm = c != 2, ok;
-        double lim = c == 3 ? jb.tol + 1e-4 : (mm ? JC_LIM_MM : JC_LIM_DEG);
-        if (s->n == 0ul) {
-            continue;
-        }
-        ok = s->fails == 0ul;
-        snprintf(d, sizeof d, "max %.3e %s limit %.1e %s n=%lu worst k=%lu%s", s->max,
-                 mm ? "mm" : "deg", lim, mm ? "mm" : "deg", s->n, s->worst,
-                 s->fails ? ", over the limit" : "");
-        fprintf(f, "  %s judge channel-%-7s %s\n", ok ? "PASS" : "FAIL", st_name[c], d);
-        if (ok) {
-            (*passed)++;
-        } else {
-            (*failed)++;
-        }
+        judge_stat_row(f, passed, failed, "channel", st_name[c], &st[c],
+                       c == 3 ? jb.tol + 1e-4 : (c != 2 ? JC_LIM_MM : JC_LIM_DEG),
+                       c != 2 ? "mm" : "deg", 1);
     }
     snprintf(d, sizeof d, "%lu point(s) in %u run(s): %lu order/coverage errors, %u unchecked",
              seen_pts, runs, cov_err, unchecked);

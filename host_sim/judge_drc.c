@@ -39,12 +39,7 @@ static struct {
 static double rpts[REF_DRC_MAXOUT][3], rtan[REF_DRC_MAXOUT][3], rsig[REF_DRC_MAXOUT],
     rlam[REF_DRC_MAXOUT];
 
-struct jstat {
-    double max;
-    unsigned long n, fails, worst;
-};
-
-static struct jstat st[5]; /* curve, tangent, sphere, line, normal */
+static struct judge_stat st[5]; /* curve, tangent, sphere, line, normal */
 static const char *const st_name[5] = {"curve", "tangent", "sphere", "line", "normal"};
 static unsigned runs, unchecked;
 static unsigned long cov_err, seen_pts;
@@ -220,15 +215,7 @@ void judge_drc_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, 
 
 static void stat_add(int c, double v, uint32_t k, double lim)
 {
-    struct jstat *s = &st[c];
-    s->n++;
-    if (v > s->max) {
-        s->max = v;
-        s->worst = k;
-    }
-    if (!(v <= lim)) {
-        s->fails++;
-    }
+    judge_stat_add(&st[c], v, lim, k);
 }
 
 void judge_drc_point(uint32_t k, double x, double y, double z, const double *n)
@@ -328,21 +315,9 @@ void judge_drc_report(FILE *f, int *passed, int *failed)
     fprintf(f, "  judge drc: %u run(s), %lu points, reference DRC-EXP (tests/ref_drc.c)\n", runs,
             seen_pts);
     for (c = 0; c < 5; c++) {
-        const struct jstat *s = &st[c];
-        int mm = c != 1 && c != 4, ok;
-        if (s->n == 0ul) {
-            continue;
-        }
-        ok = s->fails == 0ul;
-        snprintf(d, sizeof d, "max %.3e %s limit %.0e %s n=%lu worst k=%lu%s", s->max,
-                 mm ? "mm" : "deg", mm ? JD_LIM_MM : JD_LIM_DEG, mm ? "mm" : "deg", s->n,
-                 s->worst, s->fails ? ", over the limit" : "");
-        fprintf(f, "  %s judge drc-%-7s %s\n", ok ? "PASS" : "FAIL", st_name[c], d);
-        if (ok) {
-            (*passed)++;
-        } else {
-            (*failed)++;
-        }
+        int mm = c != 1 && c != 4;
+        judge_stat_row(f, passed, failed, "drc", st_name[c], &st[c], mm ? JD_LIM_MM : JD_LIM_DEG,
+                       mm ? "mm" : "deg", 1);
     }
     snprintf(d, sizeof d, "%lu point(s) in %u run(s): %lu order/coverage errors, %u unchecked",
              seen_pts, runs, cov_err, unchecked);

@@ -55,28 +55,10 @@ static struct {
     int have_prev;
 } rn;
 
-struct jstat {
-    double max, sum2;
-    unsigned long cnt, fails;
-    uint32_t worst;
-};
-static struct jstat sp, sc, sn;
+static struct judge_stat sp, sc, sn;
 static unsigned runs, runs_complete;
 static unsigned long cov_err, pts;
 static int chord_info;
-
-static void jstat_add(struct jstat *s, double v, double lim, uint32_t k)
-{
-    if (v > s->max || s->cnt == 0ul) {
-        s->max = v;
-        s->worst = k;
-    }
-    s->sum2 += v * v;
-    s->cnt++;
-    if (lim > 0.0 && !(v <= lim)) {
-        s->fails++;
-    }
-}
 
 /* SURFACE GSR: the geometry starts afresh (the raster commands stay, as in the firmware). */
 void judge_gsr_reset(void)
@@ -297,11 +279,11 @@ void judge_gsr_point(uint32_t k, double x, double y, double z, const double *n)
     where(k, &u, &sig);
     ref_emit(u, sig, P, nr);
     d = sqrt((x - P[0]) * (x - P[0]) + (y - P[1]) * (y - P[1]) + (z - P[2]) * (z - P[2]));
-    jstat_add(&sp, d, JG_LIM_POINT, k);
+    judge_stat_add(&sp, d, JG_LIM_POINT, k);
     if (n != NULL) {
         double c = (n[0] * nr[0] + n[1] * nr[1] + n[2] * nr[2]) /
                    sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        jstat_add(&sn, acos(c > 1.0 ? 1.0 : c) * 180.0 / JG_PI, JG_LIM_NORMAL, k);
+        judge_stat_add(&sn, acos(c > 1.0 ? 1.0 : c) * 180.0 / JG_PI, JG_LIM_NORMAL, k);
     }
     if (rn.have_prev) { /* chord: 7 reference samples between the two points */
         double ab[3] = {x - rn.pp[0], y - rn.pp[1], z - rn.pp[2]}, L2, worst = 0.0;
@@ -321,7 +303,7 @@ void judge_gsr_point(uint32_t k, double x, double y, double z, const double *n)
             worst = sqrt(e2) > worst ? sqrt(e2) : worst;
         }
         /* the wire rounds each end by <= 0.05 um per axis */
-        jstat_add(&sc, worst, chord_info ? 0.0 : jb.tol + 1e-4, k);
+        judge_stat_add(&sc, worst, chord_info ? 0.0 : jb.tol + 1e-4, k);
     }
     rn.pu = u;
     rn.psig = sig;
@@ -342,22 +324,6 @@ void judge_gsr_run_end(int complete)
     rn.active = 0;
 }
 
-static void row(FILE *f, int *passed, int *failed, const char *name, const struct jstat *s,
-                double lim, const char *unit, int counted)
-{
-    double rms = s->cnt ? sqrt(s->sum2 / (double)s->cnt) : 0.0;
-    int ok = s->fails == 0ul && s->cnt > 0ul;
-    if (!counted) {
-        fprintf(f, "  INFO judge gsr-%-7s max %.3e %s rms %.3e %s (STEPS: no limit) n=%lu\n", name,
-                s->max, unit, rms, unit, s->cnt);
-        return;
-    }
-    (*(ok ? passed : failed))++;
-    fprintf(f, "  %s judge gsr-%-7s max %.3e %s rms %.3e %s limit %.0e %s n=%lu worst k=%lu%s\n",
-            ok ? "PASS" : "FAIL", name, s->max, unit, rms, unit, lim, unit, s->cnt,
-            (unsigned long)s->worst, s->fails ? " OVER THE LIMIT" : "");
-}
-
 void judge_gsr_report(FILE *f, int *passed, int *failed)
 {
     if (runs == 0u) {
@@ -365,10 +331,10 @@ void judge_gsr_report(FILE *f, int *passed, int *failed)
     }
     fprintf(f, "  judge gsr: %u run(s), %u complete, %lu points (reference: tests/ref_gsr.c)\n",
             runs, runs_complete, pts);
-    row(f, passed, failed, "point", &sp, JG_LIM_POINT, "mm", 1);
-    row(f, passed, failed, "chord", &sc, jb.tol + 1e-4, "mm", !chord_info);
-    if (sn.cnt > 0ul) {
-        row(f, passed, failed, "normal", &sn, JG_LIM_NORMAL, "deg", 1);
+    judge_stat_row(f, passed, failed, "gsr", "point", &sp, JG_LIM_POINT, "mm", 1);
+    judge_stat_row(f, passed, failed, "gsr", "chord", &sc, jb.tol + 1e-4, "mm", !chord_info);
+    if (sn.n > 0ul) {
+        judge_stat_row(f, passed, failed, "gsr", "normal", &sn, JG_LIM_NORMAL, "deg", 1);
     }
     (*(cov_err == 0ul ? passed : failed))++;
     fprintf(f, "  %s judge gsr-coverage %lu point(s) in %u run(s), %lu coverage/header error(s)\n",

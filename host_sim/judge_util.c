@@ -55,3 +55,32 @@ double judge_angle_deg(const double *a, const double *b)
     d = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     return atan2(s, d) * (180.0 / 3.14159265358979323846);
 }
+
+void judge_stat_add(struct judge_stat *s, double v, double lim, uint32_t k)
+{
+    if (s->n == 0ul || v > s->max || v != v) {
+        s->max = v;
+        s->worst = k;
+    }
+    s->sum2 += v * v;
+    s->n++;
+    if (lim > 0.0 && !(v <= lim)) {
+        s->fails++;
+    }
+}
+
+void judge_stat_row(FILE *f, int *passed, int *failed, const char *model, const char *name,
+                    const struct judge_stat *s, double lim, const char *unit, int counted)
+{
+    double rms = s->n ? sqrt(s->sum2 / (double)s->n) : 0.0;
+    int ok = s->fails == 0ul;
+    if (!counted || s->n == 0ul) {
+        fprintf(f, "  INFO judge %s-%-7s max %.3e %s rms %.3e %s n=%lu (not counted)\n", model,
+                name, s->max, unit, rms, unit, s->n);
+        return;
+    }
+    (*(ok ? passed : failed))++;
+    fprintf(f, "  %s judge %s-%-7s max %.3e %s rms %.3e %s limit %.1e %s n=%lu worst k=%lu%s\n",
+            ok ? "PASS" : "FAIL", model, name, s->max, unit, rms, unit, lim, unit, s->n,
+            (unsigned long)s->worst, s->fails ? " OVER THE LIMIT" : "");
+}
