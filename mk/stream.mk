@@ -7,16 +7,16 @@ sim-pyserial: $(BUILD)/host/fw_native
 	$(Q)BUILD=$(BUILD) sh tools/pyserial_test.sh
 
 .PHONY: demo sim-rs274
-## demo: the paper's example (G-code) and a boss fillet (frames, ball tool) through the
+## demo: the paper's example (G-code), a boss fillet (frames, ball tool) and one job of each model (GSR, channel, DRC fillet) through the
 ##       firmware on a pty, judged by host_sim: summary tables, CSV, G-code and SVG in build/demo
 demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/demo
-	$(Q)for j in paper_gcode boss_frames; do \
+	$(Q)for j in paper_gcode boss_frames model_gsr_frames model_channel_frames model_drc_fillet; do \
 	    echo "== $$j: tests/jobs/$$j.job through build/host/fw_native on a pty"; \
 	    $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/demo/$$j.csv --gcode $(BUILD)/demo/$$j.ngc --svg $(BUILD)/demo/$$j.svg \
 	        | grep -v '^  PASS' || exit 1; done
-	@echo "demo: toolpaths drawn in $(BUILD)/demo/paper_gcode.svg and $(BUILD)/demo/boss_frames.svg"
+	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge)"
 
 ## sim-rs274: LinuxCNC's rs274 runs the streamed G-code (paper; boss with a ball tool) with 0
 ##            errors and every STRAIGHT_FEED equals the received point to 0.1 um (word "rs274")
