@@ -76,6 +76,21 @@ static void model_defaults(unsigned k, union path_geom *g)
     }
 }
 
+const char *job_models(void)
+{
+    return "CANAL"
+#if PATH_HAVE_GSR
+           "+GSR"
+#endif
+#if PATH_HAVE_CHANNEL
+           "+CHANNEL"
+#endif
+#if PATH_HAVE_DRC
+           "+DRC"
+#endif
+        ;
+}
+
 void job_init(struct job *j)
 {
     /* everything 0 first: LINE, CONST, all parameters, LINES, OUT_SURFACE, ANGLE labels,

@@ -109,6 +109,10 @@ int job_ready(const struct job *j);
  * model's keyword, RUN, RESUME). */
 int job_is_command(const char *line, size_t len);
 
+/* The surface models of this build for $I: "CANAL" and, when compiled in (cp_config.h
+ * CP_WITH_*), "+GSR", "+CHANNEL", "+DRC" in that order, e.g. "CANAL+GSR". */
+const char *job_models(void);
+
 /* Wire status of an enum cp_err returned by toolpath_init. */
 int job_status_of(int cp_err);
 

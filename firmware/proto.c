@@ -131,6 +131,8 @@ static void reply_info(struct proto *p)
     for (i = 0; i < 6u; i++) {
         tx_kv(p, key[i], val[i]);
     }
+    tx_str(p, ",models=");
+    tx_str(p, job_models());
     tx_str(p, "]\n");
 }
 

@@ -69,9 +69,11 @@ int test_proto_info(void)
     pump(&p);
     snprintf(want, sizeof want,
              "[VER:canalpath %s proto %d]\n[OPT:real=%s,line=%d,tx=%d,steps=%d,sub=%d,lines=%d,"
-             "link=%d,window=%d]\nok\n",
+             "link=%d,window=%d,models=CANAL%s%s%s]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
-             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)PROTO_WINDOW);
+             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)PROTO_WINDOW,
+             PATH_HAVE_GSR ? "+GSR" : "", PATH_HAVE_CHANNEL ? "+CHANNEL" : "",
+             PATH_HAVE_DRC ? "+DRC" : "");
     i = strlen(want);
     CHECK(m.out_len == 2 * i + strlen("ok\nerror:1 unknown command\n"));
     CHECK(memcmp(m.out, want, i) == 0);
