@@ -597,9 +597,14 @@ static int sim_check_canal_line(char **tok, unsigned nt);
 enum { SURF_CANAL = 0, SURF_GSR = 1, SURF_CHANNEL = 2, SURF_DRC = 3 };
 static int surface;
 static unsigned model_runs; /* runs forwarded to a model judge */
+/* Test hook (env SIM_JUDGE_PERTURB_K=k): point k is judged 5 um off in x, so a suite can
+ * prove that every judge fails on a wrong point (sim_suite.sh models). -1: off. */
+static long perturb_k = -1;
 
 void sim_check_init(void)
 {
+    const char *pk = getenv("SIM_JUDGE_PERTURB_K");
+    perturb_k = pk != NULL ? strtol(pk, NULL, 10) : -1;
     surface = SURF_CANAL;
     model_runs = 0;
     judge_gsr_reset();
@@ -1045,6 +1050,9 @@ out:
 
 void sim_check_point(uint32_t k, double x, double y, double z, const double *n)
 {
+    if (perturb_k >= 0 && (long)k == perturb_k) {
+        x += 0.005;
+    }
     if (surface == SURF_CANAL) {
         canal_point(k, x, y, z, n);
     } else if (surface == SURF_GSR) {

@@ -141,6 +141,13 @@ models)
         hs "${job}_native" native --job "$f" --csv "$OUT/${job}_native.csv" --raw "$OUT/${job}_native.raw"
         r1=$?
         result "${job}_native" $r1 "$(figs "${job}_native")"
+        # the judge can fail: the same session with point 10 judged 5 um off must exit 1
+        # with a FAIL row of the model's judge
+        SIM_JUDGE_PERTURB_K=10 hs "${job}_wrong" native --job "$f"
+        r0=$?
+        m=${job#model_}; m=${m%%_*}
+        if [ $r0 -eq 1 ] && grep -q "FAIL judge $m-" "$OUT/${job}_wrong.out"; then r0=0; else r0=1; fi
+        result "${job}_judge_fails" $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge $m-[a-z]*" "$OUT/${job}_wrong.out" | tr '\n' ' '))"
         if command -v "$QEMU" >/dev/null 2>&1; then
             # the product image of that model: the canal + model <m> (mk/m4f.mk fw-<m>.elf)
             m=${job#model_}; m=${m%%_*}
