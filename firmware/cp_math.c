@@ -36,6 +36,19 @@ cp_real cp_log(cp_real x)
 
 #else
 
+/* Exact: |x| >= 2^23 is an integer already (and Inf/NaN pass through); below that the
+ * conversion to int32_t truncates toward zero exactly and t - 1 is exact. floor(-0) is
+ * +0 (no caller depends on the sign of a zero floor). */
+cp_real cp_floorf(cp_real x)
+{
+    cp_real t;
+    if (!(cp_fabs(x) < CP_R(8388608.0))) {
+        return x;
+    }
+    t = (cp_real)(int32_t)x;
+    return t > x ? t - CP_R(1.0) : t;
+}
+
 void cp_sincos(cp_real x, cp_real *s, cp_real *c)
 {
     if (!(x >= -CP_SINCOS_XMAX && x <= CP_SINCOS_XMAX)) {

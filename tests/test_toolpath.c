@@ -42,6 +42,39 @@ int test_math_exp_log(void)
     return 0;
 }
 
+/* cp_floor / cp_ceil (float build: the firmware's own cp_floorf) equal libm's floor and
+ * ceil on every tested value: random floats over 2^-10 .. 2^30 of both signs, the
+ * neighbours of integers (one ulp off) and the specials. */
+int test_math_floor_ceil(void)
+{
+    static const double sp[] = {0.0, 0.5, 1.0, 8388607.5, 8388608.0, 16777217.0, 1e30};
+    unsigned i, st = 4242u, bad = 0u;
+    for (i = 0; i < 60000u; i++) {
+        double m = (double)(test_prng(&st) % 1000000u) / 1000000.0, x;
+        int e = (int)(test_prng(&st) % 41u) - 10;
+        cp_real v;
+        x = ldexp(1.0 + m, e) * ((i & 1u) ? -1.0 : 1.0);
+        if (i % 3u == 0u) { /* an integer, or one ulp beside one */
+            x = floor(x);
+            v = (cp_real)x;
+            v = (i % 9u == 0u) ? v : (i % 9u == 3u ? nextafterf((float)v, 1e30f) : nextafterf((float)v, -1e30f));
+        } else {
+            v = (cp_real)x;
+        }
+        bad += (double)cp_floor(v) != floor((double)v) || (double)cp_ceil(v) != ceil((double)v);
+    }
+    for (i = 0; i < sizeof sp / sizeof sp[0]; i++) {
+        cp_real v = (cp_real)sp[i];
+        bad += (double)cp_floor(v) != floor((double)v) || (double)cp_ceil(v) != ceil((double)v);
+        bad += (double)cp_floor(-v) != floor(-(double)v) || (double)cp_ceil(-v) != ceil(-(double)v);
+    }
+    TEST_NOTE("floor/ceil: %u of %u values differ from libm (%s)\n", bad,
+              60000u + 2u * (unsigned)(sizeof sp / sizeof sp[0]), CP_REAL_NAME);
+    CHECK(bad == 0u);
+    CHECK(!cp_isfinite(cp_floor((cp_real)NAN)) && cp_ceil((cp_real)INFINITY) == (cp_real)INFINITY);
+    return 0;
+}
+
 int test_math_kernels(void)
 {
     double worst_sc = 0.0, worst_at = 0.0;
