@@ -82,9 +82,18 @@ $(M4F)/bench/%.o: bench/%.c
 
 # Product images: the canal plus a set of surface models (cp_config.h CP_WITH_GSR,
 # CP_WITH_CHANNEL, CP_WITH_DRC). Only path.c and job.c depend on the set (struct
-# layouts do not), so every other object is shared with unit.elf and bench.elf,
-# which carry all models. fw-<set>.elf per set; fw.elf is the set M4F_FW_SET. Every
-# image of M4F_IMG_SETS is held to linker/budget.txt by guard-images.
+# layouts do not). fw-<set>.elf per set; fw.elf is the set M4F_FW_SET. Every image of
+# M4F_IMG_SETS is held to linker/budget.txt by guard-images.
+#
+# The product images are built with link-time optimisation (M4F_LTO=1, default): the
+# firmware sources are compiled again into $(M4F)/lto/ as GIMPLE (-flto) and code is
+# generated once for the whole image at the link (-flto-partition=one: a single unit,
+# so inlining and dead-code decisions see every caller; about 1.1 KB less flash on the
+# all-models image). The link emits the stack facts of that unit, ltrans0.ltrans.su/.ci
+# in $(M4F)/ltrans-<set>/, and -Wstack-usage applies to its frames: tools/stack.sh reads
+# them like any other .ci file. The HAL port objects (startup with its own flags,
+# UART0 port, main) stay ordinary objects with their own .ci. unit.elf and bench.elf
+# link the ordinary objects $(M4F)/fw/ (M4F_LTO=0 builds the images from those too).
 M4F_SET_all     :=
 M4F_SET_gsr     := -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
 M4F_SET_channel := -DCP_WITH_GSR=0 -DCP_WITH_DRC=0
@@ -92,23 +101,46 @@ M4F_SET_drc     := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0
 M4F_SET_canal   := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
 M4F_FW_SET   ?= canal
 M4F_IMG_SETS ?= canal gsr channel drc
-M4F_SHARED_OBJ := $(filter-out $(M4F)/fw/path.o $(M4F)/fw/job.o,$(M4F_FW_OBJ))
-M4F_SET_OBJ   = $(M4F)/set-$(1)/path.o $(M4F)/set-$(1)/job.o
+M4F_LTO      ?= 1
+ifeq ($(M4F_LTO),1)
+M4F_IMG_DIR  := $(M4F)/lto
+M4F_IMG_CC   := $(M4F_CFLAGS) -flto
+M4F_IMG_LD   := $(M4F_CFLAGS) -flto -flto-partition=one -fstack-usage -fcallgraph-info=su \
+                -Wstack-usage=$(M4F_STACK_FN)
+# stack facts of image fw-<set>.elf: the link's unit + the port objects
+M4F_IMG_CI    = $(M4F)/ltrans-$(1)/ltrans0.ltrans.ci $(M4F_PORT_OBJ:.o=.ci)
+M4F_IMG_DUMP  = -dumpdir $(M4F)/ltrans-$(1)/
+else
+M4F_IMG_DIR  := $(M4F)/fw
+M4F_IMG_CC   := $(M4F_FWFLAGS)
+M4F_IMG_LD   :=
+M4F_IMG_CI    = $(M4F_SHARED_OBJ:.o=.ci) $(patsubst %.o,%.ci,$(call M4F_SET_OBJ,$(1))) \
+                $(M4F_PORT_OBJ:.o=.ci)
+M4F_IMG_DUMP  =
+endif
+M4F_SHARED_OBJ := $(filter-out %/path.o %/job.o,$(patsubst firmware/%.c,$(M4F_IMG_DIR)/%.o,$(FW_SRC)))
+M4F_SET_OBJ   = $(M4F_IMG_DIR)/set-$(1)/path.o $(M4F_IMG_DIR)/set-$(1)/job.o
 
-$(M4F)/set-%/path.o: firmware/path.c
+$(M4F)/lto/%.o: firmware/%.c
 	@mkdir -p $(@D)
-	$(Q)$(M4F_CC) $(M4F_FWFLAGS) $(M4F_SET_$*) -MMD -MP -c $< -o $@
+	$(Q)$(M4F_CC) $(M4F_IMG_CC) -MMD -MP -c $< -o $@
 
-$(M4F)/set-%/job.o: firmware/job.c
+$(M4F_IMG_DIR)/set-%/path.o: firmware/path.c
 	@mkdir -p $(@D)
-	$(Q)$(M4F_CC) $(M4F_FWFLAGS) $(M4F_SET_$*) -MMD -MP -c $< -o $@
+	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
+
+$(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
+	@mkdir -p $(@D)
+	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
 .SECONDARY: $(foreach s,all gsr channel drc canal,$(call M4F_SET_OBJ,$(s)))
 
-$(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F)/set-%/path.o $(M4F)/set-%/job.o $(M4F_PORT_OBJ) \
-                 linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
-	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386.ld -Wl,--defsym=CP_STACK=$(M4F_STACK) \
-	    -Wl,-Map=$@.map -o $@ $(M4F_SHARED_OBJ) $(call M4F_SET_OBJ,$*) $(M4F_PORT_OBJ) -lm
+$(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F_IMG_DIR)/set-%/path.o $(M4F_IMG_DIR)/set-%/job.o \
+                 $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
+	@mkdir -p $(M4F)/ltrans-$*
+	$(Q)$(M4F_CC) $(M4F_IMG_LD) $(call M4F_IMG_DUMP,$*) $(M4F_LDFLAGS) -T mps2_an386.ld \
+	    -Wl,--defsym=CP_STACK=$(M4F_STACK) -Wl,-Map=$@.map -o $@ $(M4F_SHARED_OBJ) \
+	    $(call M4F_SET_OBJ,$*) $(M4F_PORT_OBJ) -lm
 
 $(M4F)/fw.elf: $(M4F)/fw-$(M4F_FW_SET).elf
 	$(Q)cp $< $@ && cp $<.map $@.map
@@ -144,12 +176,11 @@ guard-budget: $(M4F)/fw.elf
 
 M4F_STACK_ARGS = --elf $(M4F)/fw.elf --root Reset_Handler --isr "$(M4F_ISRS)" \
     --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
-    $(M4F_SHARED_OBJ:.o=.ci) $(patsubst %.o,%.ci,$(call M4F_SET_OBJ,$(M4F_FW_SET))) \
-    $(M4F_PORT_OBJ:.o=.ci)
+    $(call M4F_IMG_CI,$(M4F_FW_SET))
 # the same for image fw-<set>.elf
 M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_ISRS)" \
     --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
-    $(M4F_SHARED_OBJ:.o=.ci) $(patsubst %.o,%.ci,$(call M4F_SET_OBJ,$(1))) $(M4F_PORT_OBJ:.o=.ci)
+    $(call M4F_IMG_CI,$(1))
 
 ## guard-images: every product image fw-<set>.elf (M4F_IMG_SETS) within linker/budget.txt:
 ##               flash, RAM, per-function stack and the static worst stack path (word "images")
