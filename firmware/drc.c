@@ -59,8 +59,18 @@ static cp_real norm3(const struct cp_vec3 *a)
 
 /* ---- the exponential segment model ---- */
 
+/* Series terms: E1 = sum_{k=0}^{S} q^k/(k+1)!, E2 = sum q^k/(k+2)! on |q| <= 1.
+ * Truncation <= 2/(S+3)! relative to E2 >= e^-1: float S = 9 (2/12! = 4e-9 < 2^-24),
+ * double S = 16 (2/19! = 1.6e-17 < 2^-53). Outside, the closed forms lose at most
+ * a factor 1/(1 - 2/e) ~ 3.8 (E2 = (E1 - 1)/q at q = 1) to cancellation. */
+#if CP_REAL_DOUBLE
+#define DRC_SERIES 16
+#else
+#define DRC_SERIES 9
+#endif
+
 /* 1/k! for k = 1 .. DRC_SERIES + 3 (index k - 1). */
-static const cp_real inv_fact[20] = {
+static const cp_real inv_fact[DRC_SERIES + 3] = {
     CP_R(1.0),
     CP_R(0.5),
     CP_R(1.66666666666666666667e-1),
@@ -73,6 +83,7 @@ static const cp_real inv_fact[20] = {
     CP_R(2.75573192239858906526e-7),
     CP_R(2.50521083854417187751e-8),
     CP_R(2.08767569878680989792e-9),
+#if CP_REAL_DOUBLE /* (the float build's DRC_SERIES + 3 = 12 end here) */
     CP_R(1.60590438368216145994e-10),
     CP_R(1.14707455977297247139e-11),
     CP_R(7.64716373181981647590e-13),
@@ -80,37 +91,28 @@ static const cp_real inv_fact[20] = {
     CP_R(2.81145725434552076320e-15),
     CP_R(1.56192069685862264622e-16),
     CP_R(8.22063524662432971696e-18),
-    CP_R(4.11031762331216485848e-19),
-};
-
-/* Series terms: E1 = sum_{k=0}^{S} q^k/(k+1)!, E2 = sum q^k/(k+2)! on |q| <= 1.
- * Truncation <= 2/(S+3)! relative to E2 >= e^-1: float S = 9 (2/12! = 4e-9 < 2^-24),
- * double S = 16 (2/19! = 1.6e-17 < 2^-53). Outside, the closed forms lose at most
- * a factor 1/(1 - 2/e) ~ 3.8 (E2 = (E1 - 1)/q at q = 1) to cancellation. */
-#if CP_REAL_DOUBLE
-#define DRC_SERIES 16
-#else
-#define DRC_SERIES 9
 #endif
+};
 
 /* E1, E2 and e^q of real q. */
 static void e12(cp_real q, cp_real *e1, cp_real *e2, cp_real *eq)
 {
+    cp_real s1 = ZERO, s2 = ZERO, ex;
+    int k;
     if (cp_fabs(q) <= ONE) {
-        cp_real s1 = ZERO, s2 = ZERO;
-        int k;
         for (k = DRC_SERIES; k >= 0; k--) {
             s1 = s1 * q + inv_fact[k];
             s2 = s2 * q + inv_fact[k + 1];
         }
-        *e1 = s1;
-        *e2 = s2;
-        *eq = ONE + q * s1;
-        return;
+        ex = ONE + q * s1;
+    } else {
+        ex = cp_exp(q);
+        s1 = (ex - ONE) / q;
+        s2 = (s1 - ONE) / q;
     }
-    *eq = cp_exp(q);
-    *e1 = (*eq - ONE) / q;
-    *e2 = (*e1 - ONE) / q;
+    *e1 = s1;
+    *e2 = s2;
+    *eq = ex;
 }
 
 /* r^-1(rho) for rho > 0: q in [-DRC_Q_MAX, DRC_Q_MAX] with r(q) = rho (clamped at the
@@ -139,7 +141,7 @@ static cp_real rq(cp_real q)
     return (e1 - e2) / e2;
 }
 
-static cp_real sgn_inf(cp_real x)
+static CP_NOINLINE cp_real sgn_inf(cp_real x)
 {
     return x == ZERO ? ZERO : (x > ZERO ? DRC_K_INF : -DRC_K_INF);
 }
@@ -214,11 +216,11 @@ static cp_real seg_b(const struct drc_scratch *w, uint32_t i, uint32_t n)
  * (planar != 0) off the plane, coincident chord, turning >= 90 deg. Fills len and the planar signed
  * turning phi_j = atan2((d_{j-1} x d_j).z, d_{j-1}.d_j) (0 when |cross| <= 1e-6 of the
  * chords, i.e. < 0.06 mdeg: collinear; the 3D path overwrites phi). */
-static CP_NOINLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n, int planar,
-                               struct drc_scratch *w)
+static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n,
+                                    int planar, struct drc_scratch *w)
 {
-    struct cp_vec3 d0, d1, c;
-    cp_real lo[3], hi[3], dd = ZERO;
+    struct cp_vec3 d0, d1;
+    cp_real lo[3], hi[3], dd = ZERO, cz;
     uint32_t i, k;
     if (n < 3u) {
         return CP_ERR_TOO_FEW;
@@ -231,7 +233,8 @@ static CP_NOINLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n,
         const cp_real v[3] = {q->x, q->y, q->z};
         for (k = 0; k < 3u; k++) {
             if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
-                return cp_isfinite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
+                /* x - x is 0 for finite x, NaN for NaN and Inf */
+                return v[k] - v[k] == ZERO ? CP_ERR_RANGE : CP_ERR_NONFINITE;
             }
             lo[k] = (i == 0u || v[k] < lo[k]) ? v[k] : lo[k];
             hi[k] = (i == 0u || v[k] > hi[k]) ? v[k] : hi[k];
@@ -257,9 +260,9 @@ static CP_NOINLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n,
             if (!(co > ZERO)) {
                 return CP_ERR_TURN;
             }
-            cross3(&d0, &d1, &c);
-            w->phi[i] = cp_fabs(c.z) > CP_R(1e-6) * w->len[i - 1u] * w->len[i]
-                            ? cp_atan2(c.z, co) : ZERO;
+            cz = d0.x * d1.y - d0.y * d1.x; /* (d0 x d1).z */
+            w->phi[i] = cp_fabs(cz) > CP_R(1e-6) * w->len[i - 1u] * w->len[i]
+                            ? cp_atan2(cz, co) : ZERO;
         }
         d0 = d1;
     }
@@ -267,7 +270,8 @@ static CP_NOINLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n,
 }
 
 /* G2 residual of vertex j at tangent parameter x (A.2 step 1), times sign(phi_j). */
-static CP_NOINLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint32_t n, cp_real x)
+static CP_ALWAYS_INLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint32_t n,
+                                        cp_real x)
 {
     cp_real ka, kb, kl, kr, q, ph = w->phi[j];
     seg_k(x * ph, seg_b(w, j, n), w->len[j], &ka, &kb, &q);
@@ -287,8 +291,8 @@ static CP_NOINLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint3
  * bounded by the neighbour vertex's turn: |a0| <= |phi_1|, |b1| <= |phi_{N-2}| (drc.h,
  * "End tangents": a steep curvature ratio next to a short chord would otherwise turn
  * the end tangent past 90 deg, and the thickened curve would loop behind P_0). */
-static CP_NOINLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
-                              struct drc_scratch *w)
+static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
+                                   struct drc_scratch *w)
 {
     cp_real ka, kb, q, x, k;
     uint32_t i, s, e;
@@ -302,10 +306,10 @@ static CP_NOINLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_t n,
         sub3(&p[2u * ps], &p[0], &ch);
         cp_sincos(w->phi[1], &x, &q);
         k = x / norm3(&ch); /* half the signed curvature of the circle */
-        x = w->len[0] * k;
-        w->a0 = cp_atan2(x, cp_sqrt(ONE - x * x));
-        x = w->len[1] * k;
-        w->b1 = cp_atan2(x, cp_sqrt(ONE - x * x));
+        for (e = 0; e < 2u; e++) {
+            x = w->len[e] * k;
+            *(e ? &w->b1 : &w->a0) = cp_atan2(x, cp_sqrt(ONE - x * x));
+        }
     }
     for (s = 0; s < DRC_SWEEPS; s++) {
         for (e = 0; n >= 4u && e < 2u; e++) {
@@ -344,8 +348,21 @@ static cp_real tan_angle(const struct drc_scratch *w, uint32_t i, uint32_t n)
     return i == 0u ? w->a0 : (i + 1u == n ? -w->b1 : w->tp[i] * w->phi[i]);
 }
 
+/* o = the unit vector (dx, dy, 0) rotated by ang about +z; returns cos ang. */
+static CP_NOINLINE cp_real rot_z(cp_real ang, cp_real dx, cp_real dy, struct cp_vec3 *o)
+{
+    cp_real sn, cs;
+    cp_sincos(ang, &sn, &cs);
+    o->x = cs * dx - sn * dy;
+    o->y = sn * dx + cs * dy;
+    o->z = ZERO;
+    return cs;
+}
+
 /* Steps 0 and 1 of planar data (z == 0 required: CP_ERR_OFF_PLANE): the stream's path
- * and drc_tangents' for planar input, so both give the same bits. The tangent at point i
+ * and drc_tangents' for planar input, so both give the same bits. analyse, solve and
+ * g2_res are inlined here (flash: the stream's only copy; drc_tangents, library only,
+ * gets its own analyse and solve for the 3D path). The tangent at point i
  * is the unit chord c(i) rotated by -angle about +z. */
 static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
                                        unsigned ts, uint32_t n)
@@ -359,15 +376,10 @@ static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, str
     solve(p, ps, n, &w);
     for (i = 0; i < n; i++) {
         uint32_t c = i + 1u < n ? i : n - 2u;
-        struct cp_vec3 d, *o = &t[i * ts];
-        cp_real sn, cs, l = w.len[c];
-        cp_sincos(-tan_angle(&w, i, n), &sn, &cs);
+        struct cp_vec3 d;
+        cp_real l = w.len[c];
         sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
-        d.x /= l;
-        d.y /= l;
-        o->x = cs * d.x - sn * d.y;
-        o->y = cs * d.y + sn * d.x;
-        o->z = ZERO;
+        (void)rot_z(-tan_angle(&w, i, n), d.x / l, d.y / l, &t[i * ts]);
     }
     return CP_OK;
 }
@@ -379,7 +391,8 @@ static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_p
                                       struct drc_pt *m)
 {
     cp_real dx = b->p.x - a->p.x, dy = b->p.y - a->p.y, c = cp_sqrt(dx * dx + dy * dy);
-    cp_real tha, thb, d1, gm, sn, cs, e1, e2, eq, r;
+    cp_real tha, thb, d1, gm, e1, e2, eq, r;
+    struct cp_vec3 u;
     dx /= c;
     dy /= c;
     tha = cp_atan2(dx * a->t.y - dy * a->t.x, dx * a->t.x + dy * a->t.y);
@@ -398,15 +411,11 @@ static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_p
         gm = tha + cc * e1;
     }
     /* isosceles apex: M = A + c/(2 cos D1) rot(d, D1) */
-    cp_sincos(d1, &sn, &cs);
-    r = HALF * c / cs;
-    m->p.x = a->p.x + r * (cs * dx - sn * dy);
-    m->p.y = a->p.y + r * (sn * dx + cs * dy);
+    r = HALF * c / rot_z(d1, dx, dy, &u);
+    m->p.x = a->p.x + r * u.x;
+    m->p.y = a->p.y + r * u.y;
     m->p.z = ZERO;
-    cp_sincos(gm, &sn, &cs);
-    m->t.x = cs * dx - sn * dy;
-    m->t.y = sn * dx + cs * dy;
-    m->t.z = ZERO;
+    (void)rot_z(gm, dx, dy, &m->t);
 }
 
 /* ---- the 3D extension and the library entry points (not referenced by the stream) ---- */
@@ -505,7 +514,9 @@ int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsign
     if (err != CP_OK) {
         return err;
     }
-    if (analyse(p, ps, n, 1, &w) == CP_OK) {
+    for (i = 0; i < n && p[i * ps].z == ZERO; i++) {
+    }
+    if (i == n) { /* analyse(planar) would pass too: the planar path */
         return tangents_planar(p, ps, t, ts, n);
     }
     err = shape_3d(p, ps, t, ts, n, &w);
@@ -918,24 +929,24 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
 static void rlaw(const struct drc_path *it, cp_real sg, cp_real r[3])
 {
     const cp_real *c = it->rp;
-    cp_real is = ONE / it->s_tot;
+    cp_real is = ONE / it->s_tot, r0 = ZERO, r1 = ZERO, r2 = ZERO;
     int i;
     if (it->rc->surf.radius == CANAL_R_COS) {
         cp_real w = CP_TWO_PI * c[2], sn, cs;
         cp_sincos(w * sg, &sn, &cs);
-        r[0] = c[0] * cs + c[1];
-        r[1] = -c[0] * w * sn;
-        r[2] = -c[0] * w * w * cs;
+        r0 = c[0] * cs + c[1];
+        r1 = -c[0] * w * sn;
+        r2 = -c[0] * w * w * cs;
     } else {
-        r[0] = r[1] = r[2] = ZERO;
         for (i = 3; i >= 0; i--) {
-            r[2] = r[2] * sg + TWO * r[1];
-            r[1] = r[1] * sg + r[0];
-            r[0] = r[0] * sg + c[i];
+            r2 = r2 * sg + TWO * r1;
+            r1 = r1 * sg + r0;
+            r0 = r0 * sg + c[i];
         }
     }
-    r[1] *= is;
-    r[2] *= is * is;
+    r[0] = r0;
+    r[1] = r1 * is;
+    r[2] = r2 * (is * is);
 }
 
 static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
@@ -958,12 +969,12 @@ static void walk_to(struct drc_path *it, uint32_t pos)
     uint32_t js = pos >> kk;
     struct drc_pt far, tmp;
     if (pos >= it->steps) {
-        orig(it, it->dir ? 0u : it->nseg, &it->cur);
+        orig(it, (1u - it->dir) * it->nseg, &it->cur);
         it->pos = pos;
         return;
     }
     js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
-    orig(it, it->dir ? js : js + 1u, &far);
+    orig(it, js + 1u - it->dir, &far);
     if (m != 0u && pos == it->pos + 1u) {
         tmp = it->stk[kk - 1u]; /* the point at pos: the old leaf's far end */
         dn = kk;                /* depth of node pos: K - ctz(m); m has a set bit below K */
@@ -972,16 +983,12 @@ static void walk_to(struct drc_path *it, uint32_t pos)
             dn--;
         }
     } else {
-        orig(it, it->dir ? js + 1u : js, &it->cur);
+        orig(it, js + it->dir, &it->cur);
     }
     for (d = dn > 0u ? dn : 1u; d <= kk; d++) {
         const struct drc_pt *pf = d == 1u ? &far : &it->stk[d - 2u];
         if (d != dn) {
-            if (it->dir) {
-                insert_planar(pf, &it->cur, &tmp);
-            } else {
-                insert_planar(&it->cur, pf, &tmp);
-            }
+            insert_planar(it->dir ? pf : &it->cur, it->dir ? &it->cur : pf, &tmp);
         }
         if ((m >> (kk - d)) & 1u) {
             it->stk[d - 1u] = *pf;
@@ -1013,12 +1020,12 @@ static void line_start(struct drc_path *it, uint32_t jl)
     it->s = it->dir ? it->s_tot : ZERO;
     it->lam = it->dir ? it->lam_tot : ZERO;
     it->kap = it->kend[it->dir]; /* the end leaf's curvature: the start point is checked */
-    rlaw(it, it->dir ? ONE : ZERO, r);
+    rlaw(it, (cp_real)it->dir, r); /* sigma 1 or 0 */
     it->r_cur = r[0];
     label(it, jl, &it->lab_a, &it->lab_b);
 }
 
-static cp_real walk_sigma(const struct drc_path *it)
+static CP_NOINLINE cp_real walk_sigma(const struct drc_path *it)
 {
     cp_real sg = it->s / it->s_tot;
     return sg < ZERO ? ZERO : (sg > ONE ? ONE : sg);
@@ -1039,21 +1046,22 @@ static void line_step(struct drc_path *it)
 {
     struct drc_pt prev = it->cur;
     const struct drc_pt *a = it->dir ? &it->cur : &prev, *b = it->dir ? &prev : &it->cur;
-    cp_real r[3], dx, dy, h, c;
+    cp_real r[3], dx, dy, h, c, kap;
     walk_to(it, it->pos + 1u);
     dx = b->p.x - a->p.x;
     dy = b->p.y - a->p.y;
     h = cp_sqrt(dx * dx + dy * dy);
     c = a->t.x * b->t.x + a->t.y * b->t.y;
     /* 2 sin(th/2) = 2 sin th / sqrt(2 (1 + cos th)); |th| < 90 deg so 1 + c > 1 */
-    it->kap = TWO * (a->t.x * b->t.y - a->t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    kap = TWO * (a->t.x * b->t.y - a->t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    it->kap = kap;
     if (it->pos == 1u) {
-        it->kend[it->dir] = it->kap; /* the end leaf of the line's start (init: kend[1]) */
+        it->kend[it->dir] = kap; /* the end leaf of the line's start (init: kend[1]) */
     }
     h *= ONE + (ONE - c) / CP_R(12.0);
     it->s += it->dir ? -h : h;
     rlaw(it, walk_sigma(it), r);
-    it->lam += it->kap * (r[0] - it->r_cur); /* the same in both directions */
+    it->lam += kap * (r[0] - it->r_cur); /* the same in both directions */
     it->r_cur = r[0];
 }
 
@@ -1085,8 +1093,8 @@ static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_re
     struct drc_pt q;
     int end = (jl & 1u) == 0u;
     cp_real lam = end ? it->lam_tot : ZERO, qq, ha, ba, hb, bb, d;
-    orig(it, end ? it->nseg : 0u, &q);
-    frame_at(it, &q, end ? ONE : ZERO, it->kend[end], f);
+    orig(it, (uint32_t)end * it->nseg, &q);
+    frame_at(it, &q, (cp_real)end, it->kend[end], f); /* sigma 1 or 0 */
     qq = cp_sqrt(f->q2);
     label(it, jl, &ha, &ba);
     label(it, jl + 1u, &hb, &bb);
@@ -1113,7 +1121,9 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     const struct toolpath_cfg *rc = it->rc;
     struct canal_frame f;
     struct canal_point cp;
-    cp_real h, b, den, off = rc->output == TOOLPATH_OUT_SURFACE ? ZERO : rc->tool_r;
+    /* the radius offset: 0 for OUT_SURFACE, else tool_r; EDGE mode (the only user) has
+     * tool_r == 0 exactly with OUT_SURFACE (init), and + ZERO turns a -0 into +0 */
+    cp_real h, b, den, off = rc->tool_r + ZERO;
     pt->line = -1;
     pt->index = (uint16_t)(r - it->steps);
     pt->t = (jl & 1u) ? ZERO : ONE;
@@ -1144,8 +1154,11 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
         frame_at(it, &it->cur, pt->t, it->kap, &f);
         h = it->lab_a + it->lam * it->lab_b;
         b = it->lab_b;
-        if (!(f.r > rc->tool_r) || !(f.r > ZERO)) {
-            return rc->tool_r > ZERO && f.r > ZERO ? CP_ERR_TOOL : CP_ERR_RADIUS;
+        if (!(f.r > ZERO)) {
+            return CP_ERR_RADIUS;
+        }
+        if (!(f.r > rc->tool_r)) { /* (init: 0 <= tool_r, so here tool_r >= R > 0) */
+            return CP_ERR_TOOL;
         }
     }
     canal_point(&f, h, b, off, &cp);
@@ -1184,17 +1197,19 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
     for (jl = 0; jl < (it->edge ? it->n : 1u) && !(lo > it->steps && jl + 1u == it->n); jl++) {
         for (r = lo; r <= hi; r++) {
             err = point_at(it, jl, r, &pt);
-            if (err == CP_OK && !pt_finite(&pt)) {
-                err = CP_ERR_NUMERIC;
-            }
             if (err != CP_OK) {
                 return err;
+            }
+            if (!pt_finite(&pt)) {
+                return CP_ERR_NUMERIC;
             }
             if (r >= 2u && r <= it->steps) { /* distance of q1 from the chord q0 pt.p */
                 sub3(&pt.p, &q0, &u);
                 sub3(&q1, &q0, &v);
-                x = dot3(&u, &u);
-                comb3(ONE, &v, -dot3(&u, &v) / x, &u, &v);
+                x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u */
+                v.x += x * u.x;
+                v.y += x * u.y;
+                v.z += x * u.z;
                 x = CP_R(0.25) * norm3(&v);
                 if (!(x >= ZERO)) { /* NaN: pt == q0 (a zero chord), no sagitta (B4) */
                     return CP_ERR_NUMERIC;
@@ -1211,8 +1226,8 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
 int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct toolpath_cfg *rc)
 {
     uint32_t kk, i;
-    cp_real sag = ZERO, *c = it->rp, t = rc != NULL ? rc->tol : ZERO, x;
-    int err = CP_ERR_INVAL, au;
+    cp_real sag = ZERO, *c = it->rp, t, x;
+    int err, au;
     it->count = 0;
     it->k = 0;
     it->line = -1;
@@ -1221,13 +1236,15 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
     if (g == NULL || rc == NULL || g->edge > 1u || rc->output > TOOLPATH_OUT_TIP) {
         return CP_ERR_INVAL;
     }
+    t = rc->tol;
     au = g->passes == DRC_PASSES_AUTO;
     if (!au && g->passes > CP_MAX_PASSES) {
         return CP_ERR_TOO_MANY;
     }
     /* the raster, checked as toolpath_init does (EDGE only, but tol) */
-    if (!cp_isfinite(t + rc->u0 + rc->u1 + rc->tool_r + rc->surf.rp[0] + rc->surf.rp[1] +
-                     rc->surf.rp[2] + rc->surf.rp[3])) {
+    x = t + rc->u0 + rc->u1 + rc->tool_r + rc->surf.rp[0] + rc->surf.rp[1] + rc->surf.rp[2] +
+        rc->surf.rp[3];
+    if (!(x - x == ZERO)) { /* NaN for NaN and Inf */
         return CP_ERR_NONFINITE;
     }
     if (au && !(t >= CP_R(1e-5) && t <= CP_R(10.0))) {
@@ -1280,8 +1297,13 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         return err;
     }
     it->nseg = (uint8_t)(g->n - 1u);
-    for (kk = au ? 1u : g->passes; kk <= (au ? CP_MAX_PASSES : g->passes); kk++) {
+    /* AUTO: K = 1, 2, ... until the sagitta fits; else the one K (g->passes is at most
+     * CP_MAX_PASSES here, and that iteration ends the loop) */
+    for (kk = au ? 1u : g->passes; kk <= CP_MAX_PASSES + 1u; kk++) {
         uint32_t e = it->edge;
+        if (kk > CP_MAX_PASSES) {
+            return CP_ERR_TOL;
+        }
         if (((uint32_t)it->nseg << kk) > CP_MAX_STEPS) {
             return au ? CP_ERR_TOL : CP_ERR_TOO_MANY;
         }
@@ -1307,9 +1329,6 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
             break;
         }
     }
-    if (kk > (au ? CP_MAX_PASSES : g->passes)) {
-        return CP_ERR_TOL;
-    }
     if (it->edge) {
         /* link points: uniform angle steps on the end circle (radius (R - off)/q), so
          * the chord tolerance fixes them: step 4 x sqrt(tol / 2 rad) DRC_SAG_MARGIN
@@ -1319,7 +1338,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         struct canal_frame f;
         for (i = 0; i + 1u < it->n; i++) {
             x = link_at(it, i, ZERO, &f, &h, &b);
-            h = (f.r - (rc->output == TOOLPATH_OUT_SURFACE ? ZERO : rc->tool_r)) / cp_sqrt(f.q2);
+            h = (f.r - rc->tool_r) / cp_sqrt(f.q2); /* (R - off)/q, off as point_at's */
             if (h > t && t > ZERO) {
                 x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
                 worst = x > worst ? x : worst;

@@ -49,7 +49,7 @@
  *     thickened points (drc.c, rule and error bound there).
  *
  * Footprint (the whole M4F image must fit 32 KB flash): the stream uses only the planar
- * core (validation, tangent assignment, planar insertion) and the iterator, ~6.6 KB of
+ * core (validation, tangent assignment, planar insertion) and the iterator, ~6.3 KB of
  * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
  * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4
  * measures stay in this library, compiled and tested on the host and in the M4F unit

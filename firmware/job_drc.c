@@ -54,8 +54,10 @@ int job_drc_command(struct job *j, const struct job_line *l)
         }
         v[2] = CP_R(0.0);
         st = job_numbers(l, 1u, l->nt - 1u, v);
-        for (i = 0; i < 3u && st == CP_ST_OK; i++) {
-            st = cp_fabs(v[i]) > CANAL_COORD_MAX ? CP_ST_OUT_OF_RANGE : CP_ST_OK;
+        for (i = 0; i < 3u; i++) {
+            if (st == CP_ST_OK && cp_fabs(v[i]) > CANAL_COORD_MAX) {
+                st = CP_ST_OUT_OF_RANGE;
+            }
         }
         if (st == CP_ST_OK && g->n >= CP_MAX_DRC_POINTS) {
             st = CP_ST_TOO_MANY;
