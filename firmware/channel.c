@@ -19,6 +19,7 @@ enum { S_C = 3, S_X = 6, S_Z = 9 };
 
 CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), vec3_is_3_reals);
 CP_STATIC_ASSERT(sizeof(struct channel_section) == 12u * sizeof(cp_real), section_is_12_reals);
+CP_STATIC_ASSERT(offsetof(struct toolpath_pt, n) == 3u * sizeof(cp_real), pt_p_n_are_6_reals);
 
 #define SAG_MARGIN CP_R(0.8) /* aim the derived step counts at 80 % of the tolerance */
 
@@ -108,22 +109,35 @@ cp_real channel_kj(cp_real n)
 }
 
 /* ---------------------------------------------------------------------------------------
- * Small vector helpers (3 reals). */
+ * Small helpers. x finite: x - x is 0, and NaN for an infinity or a NaN (one comparison,
+ * the same answer as cp_isfinite). */
+static int fin(cp_real x)
+{
+    return x - x == CP_R(0.0);
+}
+
+/* Vectors (3 reals). */
 static cp_real dot(const cp_real *a, const cp_real *b)
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* o = a x b (o must not alias a or b). */
 static void cross(const cp_real *a, const cp_real *b, cp_real *o)
 {
-    cp_real r[3];
     unsigned k;
     for (k = 0; k < 3u; k++) {
-        unsigned i = (k + 1u) % 3u, j = (k + 2u) % 3u;
-        r[k] = a[i] * b[j] - a[j] * b[i];
+        unsigned i = k == 2u ? 0u : k + 1u, j = k == 0u ? 2u : k - 1u;
+        o[k] = a[i] * b[j] - a[j] * b[i];
     }
+}
+
+/* o = a - b. */
+static CP_NOINLINE void sub(const cp_real *a, const cp_real *b, cp_real *o)
+{
+    unsigned k;
     for (k = 0; k < 3u; k++) {
-        o[k] = r[k];
+        o[k] = a[k] - b[k];
     }
 }
 
@@ -144,7 +158,7 @@ static cp_real unit(cp_real *v)
 }
 
 /* a + k pi nearest ref (unwrapping mod pi). */
-static cp_real near(cp_real a, cp_real ref)
+static CP_NOINLINE cp_real near(cp_real a, cp_real ref)
 {
     return a + CP_PI * cp_floor((ref - a) / CP_PI + CP_R(0.5));
 }
@@ -157,21 +171,22 @@ void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_rea
                    uint8_t order)
 {
     static const uint8_t ax[2][3] = {{2u, 0u, 1u}, {0u, 1u, 2u}};
-    cp_real ang[3];
+    cp_real ang[3], *v = VR(s) + S_X; /* rows 0 (x, v[0..2]) and 2 (z, v[3..5]) */
     unsigned r, k, o = order == CHANNEL_ORDER_PRINTED ? 1u : 0u;
     ang[0] = theta;
     ang[1] = phi;
     ang[2] = psi;
-    for (r = 0; r < 2u; r++) {
-        cp_real *v = r ? VR(&s->z) : VR(&s->x);
-        v[0] = v[1] = v[2] = CP_R(0.0);
-        v[2u * r] = CP_R(1.0); /* rows 0 (x) and 2 (z) */
-        for (k = 0; k < 3u; k++) {
-            unsigned a = ax[o][k], i = (a + 1u) % 3u, j = (a + 2u) % 3u;
-            cp_real sn, cs, vi = v[i], vj = v[j];
-            cp_sincos(ang[a], &sn, &cs);
-            v[i] = vi * cs - vj * sn;
-            v[j] = vi * sn + vj * cs;
+    for (r = 0; r < 6u; r++) {
+        v[r] = r == 0u || r == 5u ? CP_R(1.0) : CP_R(0.0); /* e_0, e_2 */
+    }
+    for (k = 0; k < 3u; k++) { /* each factor applied to both rows */
+        unsigned a = ax[o][k], i = a == 2u ? 0u : a + 1u, j = a == 0u ? 2u : a - 1u;
+        cp_real sn, cs;
+        cp_sincos(ang[a], &sn, &cs);
+        for (r = 0; r < 6u; r += 3u) {
+            cp_real vi = v[r + i], vj = v[r + j];
+            v[r + i] = vi * cs - vj * sn;
+            v[r + j] = vi * sn + vj * cs;
         }
     }
 }
@@ -189,11 +204,13 @@ static const cp_real hc[3][5] = {
     {CP_R(-15.0), CP_R(8.0), CP_R(7.0), CP_R(1.5), CP_R(-1.0)},
     {CP_R(6.0), CP_R(-3.0), CP_R(-3.0), CP_R(-0.5), CP_R(0.5)}};
 
-/* Frame from the unit tangent r->t: e1 = unit(e_y x tau) = (tau_z, 0, -tau_x)/vn,
- * e2 = tau x e1; flags CHANNEL_ROW_FRAME at vn <= CHANNEL_FRAME_TOL; returns vn. */
+/* Unit tangent and frame from the tangent r->t: r->sp = |r->t|, r->t /= r->sp (tau),
+ * e1 = unit(e_y x tau) = (tau_z, 0, -tau_x)/vn, e2 = tau x e1; flags CHANNEL_ROW_FRAME at
+ * vn <= CHANNEL_FRAME_TOL; returns vn. */
 static cp_real frame(struct channel_row *r)
 {
     cp_real vn;
+    r->sp = unit(r->t);
     r->e1[0] = r->t[2];
     r->e1[1] = CP_R(0.0);
     r->e1[2] = -r->t[0];
@@ -205,12 +222,6 @@ static cp_real frame(struct channel_row *r)
     return vn;
 }
 
-/* Second derivative of law q at node i (natural ends: 0). */
-static cp_real y2at(const struct channel *ch, unsigned q, unsigned i)
-{
-    return (i == 0u || i + 1u >= ch->ns) ? CP_R(0.0) : ch->y2[q][i - 1u];
-}
-
 /* Guide part: L, L', L'' -> tau, frame, |L'|; curvature vector kv = (L'' - (tau.L'')
  * tau)/|L'|^2, so kv.e_i = L''.e_i/|L'|^2; frame twist w = e2.e1' = e2.(tau'_z, 0,
  * -tau'_x)/vn with tau' = (L'' - (tau.L'') tau)/|L'|, whose tau part drops out
@@ -218,10 +229,10 @@ static cp_real y2at(const struct channel *ch, unsigned q, unsigned i)
  * Laws: natural cubic splines on [m, m + 1] (exact node values at t = 0). */
 void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
 {
-    const cp_real *s0, *s1;
+    const cp_real *s0, *s1, *ac;
     cp_real l2[3], v[NQ], dv[NQ], kk[4];
     cp_real t, tt, vn, w, pp, lp, js, qq, lq, r1, r2, a, b, dd, e, dal;
-    unsigned m, k, j, i;
+    unsigned m, k, j, i, fl = 0u; /* law flags, or'ed into r->flags (frame's) at the end */
     r->u = u;
     r->flags = 0u;
     if (!(u > CP_R(0.0))) {
@@ -236,33 +247,31 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     }
     t = u - (cp_real)m;
     s0 = CVR(&ch->cfg->s[m]);
-    s1 = CVR(&ch->cfg->s[m + 1u]);
+    s1 = s0 + 12;
+    ac = ch->acc[m];
     for (k = 0; k < 3u; k++) {
-        cp_real in[5], c[6], h = CP_R(0.0), d1 = CP_R(0.0), d2 = CP_R(0.0);
-        c[0] = s0[S_C + k];
-        in[0] = s1[S_C + k] - c[0];
+        cp_real in[5], h = CP_R(0.0), d1 = CP_R(0.0), d2 = CP_R(0.0);
+        in[0] = s1[S_C + k] - s0[S_C + k];
         in[1] = ch->d[m] * s0[S_Z + k];
         in[2] = ch->d[m + 1u] * s1[S_Z + k];
-        in[3] = ch->acc[m][k];
-        in[4] = ch->acc[m + 1u][k];
-        c[1] = in[1];
-        c[2] = CP_R(0.5) * in[3];
-        for (j = 0; j < 3u; j++) {
-            c[j + 3u] = CP_R(0.0);
-            for (i = 0; i < 5u; i++) {
-                c[j + 3u] += hc[j][i] * in[i];
+        in[3] = ac[k];
+        in[4] = ac[3u + k];
+        for (j = 6u; j-- > 0u;) { /* c5 .. c0 */
+            cp_real cj = j == 2u ? CP_R(0.5) * in[3] : (j == 1u ? in[1] : s0[S_C + k]);
+            if (j >= 3u) {
+                cj = CP_R(0.0);
+                for (i = 0; i < 5u; i++) {
+                    cj += hc[j - 3u][i] * in[i];
+                }
             }
-        }
-        for (j = 6u; j-- > 0u;) {
             d2 = d2 * t + d1;
             d1 = d1 * t + h;
-            h = h * t + c[j];
+            h = h * t + cj;
         }
         r->l[k] = h;
         r->t[k] = d1;
         l2[k] = CP_R(2.0) * d2;
     }
-    r->sp = unit(r->t);
     vn = frame(r);
     for (k = 0; k < 2u; k++) {
         r->k[k] = dot(l2, k ? r->e2 : r->e1) / (r->sp * r->sp);
@@ -271,7 +280,9 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     tt = CP_R(1.0) - t;
     for (k = 0; k < NQ; k++) {
         cp_real ya = ch->y[k][m], yb = ch->y[k][m + 1u];
-        cp_real sa = y2at(ch, k, m), sb = y2at(ch, k, m + 1u);
+        /* second derivatives at nodes m, m + 1 (natural ends: 0) */
+        cp_real sa = m > 0u ? ch->y2[k][m - 1u] : CP_R(0.0);
+        cp_real sb = m + 2u < ch->ns ? ch->y2[k][m] : CP_R(0.0);
         v[k] = tt * ya + t * yb + ((tt * tt * tt - tt) * sa + (t * t * t - t) * sb) / CP_R(6.0);
         dv[k] = yb - ya + ((CP_R(1.0) - CP_R(3.0) * tt * tt) * sa + (CP_R(3.0) * t * t - CP_R(1.0)) * sb) /
                               CP_R(6.0);
@@ -279,7 +290,7 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     r->s = v[Q_S];
     r->n = v[Q_N];
     if (!(v[Q_S] > CP_R(0.0)) || !(v[Q_N] >= CP_R(1.0))) {
-        r->flags |= CHANNEL_ROW_BAD_LAW;
+        fl |= CHANNEL_ROW_BAD_LAW;
     }
     /* closed-form section (B.2 step 6): P = ab, Q = a^2 + b^2; a + b = r1, a - b = r2;
      * b = P/a (no cancellation). Log-derivatives for the normal: P'/P, Q'/Q. */
@@ -292,11 +303,11 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     /* Q <= 0 (J_I + J_II <= 0: spline overshoot) or NaN is no section: rejected
      * (CP_ERR_AREA_LAW by the init walks); 0 < Q < 2P is clamped to a = b and counted */
     if (!(qq > CP_R(0.0))) {
-        r->flags |= CHANNEL_ROW_BAD_LAW;
+        fl |= CHANNEL_ROW_BAD_LAW;
     }
     if (qq < CP_R(2.0) * pp) {
         qq = CP_R(2.0) * pp;
-        r->flags |= CHANNEL_ROW_CLAMP;
+        fl |= CHANNEL_ROW_CLAMP;
     }
     r1 = cp_sqrt(qq + CP_R(2.0) * pp);
     r2 = cp_sqrt(qq - CP_R(2.0) * pp);
@@ -323,6 +334,7 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     r->q = CP_R(2.0) / v[Q_N];
     r->dq = -r->q * dv[Q_N] / v[Q_N];
     r->wr = dal + w;
+    r->flags |= (uint8_t)fl;
 }
 
 /* (x, y) rotated by alpha. */
@@ -333,8 +345,8 @@ static void rot(const struct channel_row *r, const cp_real *v, cp_real *o)
 }
 
 /* o = f v + x e1 + y e2. */
-static void comb(const struct channel_row *r, cp_real *o, const cp_real *v, cp_real f, cp_real x,
-                 cp_real y)
+static CP_NOINLINE void comb(const struct channel_row *r, cp_real *o, const cp_real *v, cp_real f,
+                             cp_real x, cp_real y)
 {
     unsigned k;
     for (k = 0; k < 3u; k++) {
@@ -389,7 +401,7 @@ int channel_section_check(const struct channel_section *s)
     const cp_real *v = CVR(s);
     unsigned i;
     for (i = 0; i < 12u; i++) {
-        if (!cp_isfinite(v[i])) {
+        if (!fin(v[i])) {
             return CP_ERR_NONFINITE;
         }
         if (i >= 3u && cp_fabs(v[i]) > CHANNEL_COORD_MAX) {
@@ -402,11 +414,14 @@ int channel_section_check(const struct channel_section *s)
     if (!(s->n >= CP_R(1.0))) {
         return CP_ERR_EXPONENT;
     }
-    if (s->a > CHANNEL_COORD_MAX || s->b > CHANNEL_COORD_MAX || s->n > CHANNEL_N_MAX ||
-        cp_fabs(dot(v + S_X, v + S_X) - CP_R(1.0)) > CHANNEL_AXES_TOL ||
-        cp_fabs(dot(v + S_Z, v + S_Z) - CP_R(1.0)) > CHANNEL_AXES_TOL ||
-        cp_fabs(dot(v + S_X, v + S_Z)) > CHANNEL_AXES_TOL) {
+    if (s->a > CHANNEL_COORD_MAX || s->b > CHANNEL_COORD_MAX || s->n > CHANNEL_N_MAX) {
         return CP_ERR_RANGE;
+    }
+    for (i = 0; i < 3u; i++) { /* x.x = 1, z.z = 1, x.z = 0 */
+        cp_real d = dot(v + (i == 1u ? S_Z : S_X), v + (i == 0u ? S_X : S_Z));
+        if (cp_fabs(d - (i < 2u ? CP_R(1.0) : CP_R(0.0))) > CHANNEL_AXES_TOL) {
+            return CP_ERR_RANGE;
+        }
     }
     if (s->n != CP_R(2.0) && cp_fabs(s->a - s->b) <= CHANNEL_ISO_TOL * (s->a > s->b ? s->a : s->b)) {
         return CP_ERR_ISOTROPIC;
@@ -443,9 +458,7 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
     /* chord e = O_e - O_(e-1), 1 <= e < N: coincident centres, a section plane containing
      * the chord (either end) */
     for (e = 1u; e < ns; e++) {
-        for (k = 0; k < 3u; k++) {
-            cv[e][k] = CVR(&cfg->s[e].c)[k] - CVR(&cfg->s[e - 1u].c)[k];
-        }
+        sub(CVR(&cfg->s[e].c), CVR(&cfg->s[e - 1u].c), cv[e]);
         cl[e] = norm(cv[e]);
         if (!(cl[e] > CP_R(1.0e-6) * (cfg->s[e - 1u].a + cfg->s[e - 1u].b))) {
             return CP_ERR_COINCIDENT;
@@ -456,54 +469,31 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
             }
         }
     }
-    /* node i has chords lo = max(i, 1) and hi = min(i + 1, N - 1) (the same one at the ends).
+    /* node i: chords lo = max(i, 1) and hi = min(i + 1, N - 1) (the same one at the ends).
      * Tangent M_i = d_i z_i: sign towards the next centre (last: from the previous), |d_i|
-     * = mean adjacent chord (B6). Second derivative A_i (B7) = mean of the one-sided
-     * cubic-Hermite values: on chord e from A = e - 1 to B = e, H''(0) = 6 dP - 4 M_A - 2 M_B
-     * at A, H''(1) = -(6 dP - 2 M_A - 4 M_B) at B (ends: the one value, halved twice). */
-    for (q = 0; q < 2u; q++) {
-        for (i = 0; i < ns; i++) {
-            unsigned lo = i > 0u ? i : 1u, hi = i + 1u < ns ? i + 1u : i;
-            if (q == 0u) {
-                ch->d[i] = CP_R(0.5) * (cl[lo] + cl[hi]);
-                if (!(dot(CVR(&cfg->s[i].z), cv[hi]) > CP_R(0.0))) {
-                    ch->d[i] = -ch->d[i];
-                }
-                continue;
-            }
-            for (k = 0; k < 3u; k++) {
-                ch->acc[i][k] = CP_R(0.0);
-            }
-            for (e = 0; e < 2u; e++) {
-                unsigned c = e ? hi : lo;
-                cp_real fa = c == i ? CP_R(2.0) : CP_R(4.0), sg = c == i ? CP_R(-0.5) : CP_R(0.5);
-                const cp_real *za = CVR(&cfg->s[c - 1u].z), *zb = CVR(&cfg->s[c].z);
-                for (k = 0; k < 3u; k++) {
-                    ch->acc[i][k] += sg * (CP_R(6.0) * cv[c][k] - fa * ch->d[c - 1u] * za[k] -
-                                           (CP_R(6.0) - fa) * ch->d[c] * zb[k]);
-                }
-            }
-        }
-    }
-    /* node angles (B.2 step 4) in the frame that places the sections (B8), tau = unit(M_i),
-     * unwrapped mod pi; a < b: the same curve with the axes swapped (a along y, alpha + pi/2).
-     * Node data (step 5). */
+     * = mean adjacent chord (B6). Node angles (B.2 step 4) in the frame that places the
+     * sections (B8), tau = unit(M_i), unwrapped mod pi; a < b: the same curve with the axes
+     * swapped (a along y, alpha + pi/2). Node data (step 5). */
     for (i = 0; i < ns; i++) {
         const struct channel_section *s = &cfg->s[i];
         const cp_real *sv = CVR(s);
-        cp_real a = s->a, b = s->b, xa[3], jx, jy, sn, cs, t;
+        const cp_real *xa = sv + S_X; /* the a axis */
+        cp_real a = s->a, b = s->b, ya[3], jx, jy, sn, cs, t;
+        unsigned lo = i > 0u ? i : 1u, hi = i + 1u < ns ? i + 1u : i;
+        t = CP_R(0.5) * (cl[lo] + cl[hi]);
+        ch->d[i] = dot(sv + S_Z, cv[hi]) > CP_R(0.0) ? t : -t;
         r.flags = 0u;
         for (k = 0; k < 3u; k++) {
             r.t[k] = ch->d[i] * sv[S_Z + k];
-            xa[k] = sv[S_X + k];
+            ch->acc[i][k] = CP_R(0.0);
         }
-        (void)unit(r.t);
         (void)frame(&r);
         if (r.flags & CHANNEL_ROW_FRAME) {
             return CP_ERR_FRAME_REF;
         }
         if (a < b) {
-            cross(sv + S_Z, sv + S_X, xa); /* y = z x x */
+            cross(sv + S_Z, sv + S_X, ya); /* y = z x x */
+            xa = ya;
             a = s->b;
             b = s->a;
         }
@@ -518,6 +508,25 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
         ch->y[Q_JI][i] = jx * cs * cs + jy * sn * sn;
         ch->y[Q_JII][i] = jx * sn * sn + jy * cs * cs;
         ch->y[Q_J12][i] = (jy - jx) * sn * cs;
+    }
+    /* Node second derivatives A_i (B7) = mean of the one-sided cubic-Hermite values: on
+     * chord e from node e - 1 to node e, H''(0) = 6 dP - 4 M_(e-1) - 2 M_e at e - 1 (q = 0),
+     * H''(1) = -(6 dP - 2 M_(e-1) - 4 M_e) at e (q = 1); halved, summed over the node's two
+     * chords (the lower one first), or twice the one chord of an end node. */
+    for (e = 1u; e < ns; e++) {
+        for (q = 0; q < 2u; q++) {
+            unsigned nd = e - 1u + q;
+            cp_real fa = q ? CP_R(2.0) : CP_R(4.0), sg = q ? CP_R(-0.5) : CP_R(0.5);
+            const cp_real *za = CVR(&cfg->s[e - 1u].z), *zb = CVR(&cfg->s[e].z);
+            for (k = 0; k < 3u; k++) {
+                cp_real h = sg * (CP_R(6.0) * cv[e][k] - fa * ch->d[e - 1u] * za[k] -
+                                  (CP_R(6.0) - fa) * ch->d[e] * zb[k]);
+                ch->acc[nd][k] += h;
+                if (nd == 0u || nd + 1u == ns) {
+                    ch->acc[nd][k] += h;
+                }
+            }
+        }
     }
     /* natural cubic splines, uniform knots (h = 1): y2[i-1] + 4 y2[i] + y2[i+1] =
      * r_i = 6 (y[i+1] - 2 y[i] + y[i-1]), y2 = 0 at both ends: N - 2 <= 2 unknowns
@@ -661,29 +670,28 @@ static CP_NOINLINE cp_real frac(const struct channel_path *cp, unsigned c, uint3
     return den == 0u ? cp->lo[c] : cp->lo[c] + (cp->hi[c] - cp->lo[c]) * (cp_real)num / (cp_real)den;
 }
 
-/* Point k: output position and normal, t, line, index in pt; surface point s; *kind = 1
- * on a link; through the row cache (key: u). Checks the row and the point: CP_OK,
+/* Point k: output position and normal, t, line (-1: a link point), index in pt; surface
+ * point s; through the row cache (key: u). Checks the row and the point: CP_OK,
  * CP_ERR_FRAME_REF, CP_ERR_AREA_LAW, CP_ERR_NUMERIC (non-finite), CP_ERR_FOLD (g <= 0). */
-static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struct cp_vec3 *s,
-              unsigned *kind)
+static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struct cp_vec3 *s)
 {
-    cp_real x[2], g, *p = VR(&pt->p);
+    cp_real x[2], g, g2 = CP_R(0.0), *p = VR(&pt->p);
     const cp_real *n = CVR(&pt->n), *sv = CVR(s);
     uint32_t st = cp->steps, den = st, j = k / (st + 1u + cp->link), i = k % (st + 1u + cp->link);
-    uint32_t nm = (uint32_t)cp->n - 1u;
+    uint32_t nm = (uint32_t)cp->n - 1u, a = 0u;
     unsigned al = cp->mode, ac = al ^ 1u, c; /* TOOLPATH_LINES = 0: along u */
-    *kind = i > st;
     pt->line = (int16_t)j;
-    if (*kind != 0u) {
+    if (i > st) { /* a link */
         i -= st;
         den = (uint32_t)cp->link + 1u;
+        a = i;
         x[al] = (j & 1u) ? cp->lo[al] : cp->hi[al]; /* where line/ring j ends */
         pt->line = -1;
     } else {
         i = (j & 1u) ? st - i : i; /* zigzag */
         x[al] = frac(cp, al, i, den);
     }
-    x[ac] = frac(cp, ac, j * den + (*kind ? i : 0u), nm * den);
+    x[ac] = frac(cp, ac, j * den + a, nm * den);
     pt->index = (uint16_t)i;
     pt->t = x[0];
     if (cp->row.u != x[0]) {
@@ -702,10 +710,22 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
     if (cp->row.flags & CHANNEL_ROW_BAD_LAW) {
         return CP_ERR_AREA_LAW;
     }
-    if (!cp_isfinite(p[0] + p[1] + p[2] + n[0] + n[1] + n[2])) {
+    for (c = 0; c < 6u; c++) { /* p then n: 6 consecutive reals (static assert below) */
+        g2 += p[c];
+    }
+    if (!fin(g2)) {
         return CP_ERR_NUMERIC;
     }
     return g > CP_R(0.0) ? CP_OK : CP_ERR_FOLD;
+}
+
+/* Set steps and link (<= 2 CP_MAX_LINK + 1); returns the points of the raster,
+ * n (steps + 1) + (n - 1) link. */
+static CP_NOINLINE uint32_t raster(struct channel_path *cp, uint32_t steps, uint32_t link)
+{
+    cp->steps = steps;
+    cp->link = (uint16_t)link;
+    return (uint32_t)cp->n * (steps + 1u) + ((uint32_t)cp->n - 1u) * link;
 }
 
 /* Walk the whole raster with seg[0] segments per line/ring and seg[1] per link, doubled
@@ -723,13 +743,12 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
     const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
     uint32_t k, cnt;
     unsigned c, kind = 0u;
-    cp->steps = 2u * seg[0]; /* up to 2 CP_MAX_STEPS: uint32_t */
-    cp->link = (uint16_t)(2u * seg[1] - 1u);
-    cnt = (uint32_t)cp->n * (2u * seg[0] + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
+    cnt = raster(cp, 2u * seg[0], 2u * seg[1] - 1u); /* steps up to 2 CP_MAX_STEPS: uint32_t */
     sag[0] = sag[1] = CP_R(0.0);
     for (k = 0; k < cnt; k++) {
         unsigned prev = kind;
-        int err = at(cp, k, &pt, &sv, &kind);
+        int err = at(cp, k, &pt, &sv);
+        kind = pt.line < 0; /* a link point */
         if (err != CP_OK) {
             return err;
         }
@@ -737,10 +756,8 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
             cp->ch.clamps++;
         }
         if (k > 0u && cp->output != TOOLPATH_OUT_SURFACE) {
-            for (c = 0; c < 3u; c++) {
-                dm[c] = s[c] - sp[c];                /* surface step */
-                dc[c] = p[c] - op[(k - 1u) & 1u][c]; /* output step */
-            }
+            sub(s, sp, dm);                /* surface step */
+            sub(p, op[(k - 1u) & 1u], dc); /* output step */
             if (!(dot(dm, dc) > CP_R(0.0))) {
                 return CP_ERR_TOOL;
             }
@@ -750,10 +767,8 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
              * midpoint: |cos w|^(2/n) spaces the points very unevenly near the section axes,
              * which is no deviation from the chord) */
             cp_real d, lc;
-            for (c = 0; c < 3u; c++) {
-                dm[c] = op[1][c] - op[0][c];
-                dc[c] = p[c] - op[0][c];
-            }
+            sub(op[1], op[0], dm);
+            sub(p, op[0], dc);
             cross(dm, dc, cx);
             lc = norm(dc);
             d = lc > CP_R(0.0) ? norm(cx) / lc : norm(dm);
@@ -780,15 +795,16 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
         (rs->output == TOOLPATH_OUT_SURFACE && rs->tool_r != CP_R(0.0))) {
         return CP_ERR_INVAL;
     }
-    /* x * 0 is NaN exactly when x is not finite (no overflow of a sum) */
-    if (!cp_isfinite(rs->u0 * CP_R(0.0) + rs->u1 * CP_R(0.0) + rs->tol * CP_R(0.0) +
-                     rs->tool_r * CP_R(0.0))) {
+    /* x * 0 is NaN exactly when x is not finite, else +-0 (no overflow of a sum): the sum
+     * is 0 exactly when all four are finite */
+    if (!(rs->u0 * CP_R(0.0) + rs->u1 * CP_R(0.0) + rs->tol * CP_R(0.0) + rs->tool_r * CP_R(0.0) ==
+          CP_R(0.0))) {
         return CP_ERR_NONFINITE;
     }
     if (rs->n == 0u || cp_fabs(rs->u0) > CP_PI || cp_fabs(rs->u1) > CP_PI ||
         (rs->u0 == rs->u1 && rs->n > 1u) ||
         (rs->tol != CP_R(0.0) && (rs->tol < CP_R(1e-5) || rs->tol > CP_R(10.0))) ||
-        (rs->steps == 0u && rs->tol == CP_R(0.0)) ||
+        (rs->tol == CP_R(0.0) && rs->steps == 0u) ||
         (rs->link != TOOLPATH_LINK_AUTO && rs->link > CP_MAX_LINK)) {
         return CP_ERR_RANGE;
     }
@@ -864,9 +880,7 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     if (it > 4u) { /* not reached (see the loop header); a guard for the fixed bound */
         return CP_ERR_TOL;
     }
-    cp->steps = seg[0];
-    cp->link = (uint16_t)(seg[1] - 1u);
-    cp->count = (uint32_t)cp->n * ((uint32_t)cp->steps + 1u) + ((uint32_t)cp->n - 1u) * cp->link;
+    cp->count = raster(cp, seg[0], seg[1] - 1u);
     return CP_OK;
 }
 
@@ -887,12 +901,11 @@ int channel_path_seek(struct channel_path *cp, uint32_t k)
 int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt)
 {
     struct cp_vec3 s;
-    unsigned kind;
     int err;
     if (cp->k >= cp->count) {
         return CP_ERR_DONE;
     }
-    err = at(cp, cp->k, pt, &s, &kind);
+    err = at(cp, cp->k, pt, &s);
     if (err == CP_OK) {
         cp->k++;
     }

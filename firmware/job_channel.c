@@ -30,7 +30,7 @@ int job_channel_command(struct job *j, const struct job_line *l)
     static const uint8_t na[3] = {9u, 6u, 1u}; /* arguments */
     struct channel_cfg *g;
     struct channel_section s;
-    cp_real v[9], *sv = (cp_real *)&s; /* 12 reals (static assert in channel.c) */
+    cp_real *sv = (cp_real *)&s; /* 12 reals (static assert in channel.c) */
     unsigned c, i;
     int st;
     for (c = 0; c < 3u && (l->nt == 0u || !parse_is(l->s + l->st[0], l->ln[0], kw[c])); c++) {
@@ -50,7 +50,9 @@ int job_channel_command(struct job *j, const struct job_line *l)
         j->have &= (uint16_t)~JOB_HAVE_SECTION;
         return CP_ST_OK;
     }
-    st = job_numbers(l, 1u, na[c], v);
+    /* the numbers straight into the section: SECTION a b n centre at 0..5 and the angles
+     * at 6..8 (the x row, which channel_euler then writes); AXES the rows x, z at 6..11 */
+    st = job_numbers(l, 1u, na[c], sv + 6u * c);
     if (st != CP_ST_OK) {
         return st;
     }
@@ -59,22 +61,18 @@ int job_channel_command(struct job *j, const struct job_line *l)
             return CP_ST_TOO_MANY;
         }
         for (i = 6u; i < 9u; i++) {
-            if (cp_fabs(v[i]) > CP_R(360.0)) {
+            if (cp_fabs(sv[i]) > CP_R(360.0)) {
                 return CP_ST_OUT_OF_RANGE;
             }
         }
-        for (i = 0; i < 6u; i++) {
-            sv[i] = v[i];
-        }
-        channel_euler(&s, v[6] * CP_DEG2RAD, v[7] * CP_DEG2RAD, v[8] * CP_DEG2RAD,
+        channel_euler(&s, sv[6] * CP_DEG2RAD, sv[7] * CP_DEG2RAD, sv[8] * CP_DEG2RAD,
                       CHANNEL_ORDER_SPIN_FIRST);
     } else { /* AXES: rows x, z of the last section */
         if (g->count == 0u) {
             return CP_ST_TOO_FEW; /* AXES needs a SECTION to apply to */
         }
-        s = g->s[g->count - 1u];
         for (i = 0; i < 6u; i++) {
-            sv[6u + i] = v[i];
+            sv[i] = ((const cp_real *)&g->s[g->count - 1u])[i];
         }
     }
     st = channel_section_check(&s);
