@@ -59,7 +59,7 @@ static cp_real dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
     return a->x * b->x + a->y * b->y + a->z * b->z;
 }
 
-static void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
+static CP_NOINLINE void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
     struct cp_vec3 r;
     r.x = a->y * b->z - a->z * b->y;
@@ -75,6 +75,12 @@ static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real 
     o->x = p * a->x + q * b->x;
     o->y = p * a->y + q * b->y;
     o->z = p * a->z + q * b->z;
+}
+
+/* cp_isfinite out of line: one copy for the checks of init, sections and points. */
+static CP_NOINLINE int fin(cp_real x)
+{
+    return cp_isfinite(x);
 }
 
 /* Normalize v; returns its former length. */
@@ -138,19 +144,23 @@ static void centre_jet(const struct gsr_cfg *cf, cp_real t, struct cp_vec3 *j)
     }
 }
 
-/* Projection frame of axis a (derivative ad) at unit tangent T (d2 = C'', sp = |C'|):
- * U, V and the twist *w (per arc length, see top). Returns |a - (a.T) T|^2 / |a|^2 (0 or
- * NaN: a parallel to T or zero). */
+/* A projection frame: U, V and its twist w (per arc length, see top). */
+struct pframe {
+    struct cp_vec3 u, v;
+    cp_real w;
+};
+
+/* Projection frame f of axis a (derivative ad) at unit tangent T (d2 = C'', sp = |C'|).
+ * Returns |a - (a.T) T|^2 / |a|^2 (0 or NaN: a parallel to T or zero). */
 static cp_real proj(const struct cp_vec3 *a, const struct cp_vec3 *ad, const struct cp_vec3 *T,
-                    const struct cp_vec3 *d2, cp_real sp, struct cp_vec3 *U, struct cp_vec3 *V,
-                    cp_real *w)
+                    const struct cp_vec3 *d2, cp_real sp, struct pframe *f)
 {
     cp_real pa = dot(a, T), q, wl;
-    comb(U, CP_R(1.0), a, -pa, T);
-    q = dot(U, U) / dot(a, a);
-    wl = unit(U);
-    cross(T, U, V);
-    *w = (dot(ad, V) - pa * dot(d2, V) / sp) / (wl * sp);
+    comb(&f->u, CP_R(1.0), a, -pa, T);
+    q = dot(&f->u, &f->u) / dot(a, a);
+    wl = unit(&f->u);
+    cross(T, &f->u, &f->v);
+    f->w = (dot(ad, &f->v) - pa * dot(d2, &f->v) / sp) / (wl * sp);
     return q;
 }
 
@@ -178,7 +188,8 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
 {
     const struct gsr_cfg *cf = g->cfg;
     const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
-    struct cp_vec3 j[4], U, V;
+    struct cp_vec3 j[4];
+    struct pframe pf;
     cp_real f[3][4], sp, s2, q, w, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
     int err = CP_OK;
@@ -204,14 +215,14 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         cs[0] = CP_R(0.0);
         cs[1] = CP_R(-1.0);
     }
-    q = proj(ax, ad, &s->t, &j[2], sp, &U, &V, &w);
+    q = proj(ax, ad, &s->t, &j[2], sp, &pf);
     if (g->frame == GSR_FRAME_RMF) {
         cp_sincos(rmf_phi(g, f[2][0]), &cs[1], &cs[0]);
-        w = CP_R(0.0);
+        pf.w = CP_R(0.0);
     }
-    comb(&s->n, cs[0], &U, cs[1], &V);
+    comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
     cross(&s->t, &s->n, &s->b);
-    s->tw = s->ts * w;
+    s->tw = s->ts * pf.w;
     s->k1 = dot(&j[2], &s->n) / s2;
     s->k2 = dot(&j[2], &s->b) / s2;
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
@@ -225,7 +236,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         err = CP_ERR_DEGENERATE;
     } else if (!(q > GSR_EPS * GSR_EPS)) {
         err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
-    } else if (!cp_isfinite(s->c.x + s->c.y + s->c.z + s->n.x + s->n.y + s->n.z + s->tw + w)) {
+    } else if (!fin(s->c.x + s->c.y + s->c.z + s->n.x + s->n.y + s->n.z + s->tw + w)) {
         err = CP_ERR_NUMERIC;
     } else if (!(w < CP_R(1.0))) {
         err = CP_ERR_FOLD;
@@ -241,7 +252,8 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
 static CP_NOINLINE cp_real rmf_build(struct gsr *g)
 {
     const uint32_t total = GSR_RMF_N * GSR_RMF_SUB;
-    struct cp_vec3 j[4], U, V;
+    struct cp_vec3 j[4];
+    struct pframe pf;
     cp_real span = g->t1 - g->t0, f[3] = {CP_R(0.0), CP_R(0.0), CP_R(0.0)}, phi = CP_R(0.0),
             pm = CP_R(0.0), worst = CP_R(0.0), w, sp;
     uint32_t i;
@@ -249,12 +261,12 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     for (i = 0; i <= total; i++) {
         centre_jet(g->cfg, g->t0 + span * ((cp_real)i / (cp_real)total), j);
         sp = unit(&j[1]);
-        if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &U, &V, &w) > GSR_EPS * GSR_EPS)) {
+        if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &pf) > GSR_EPS * GSR_EPS)) {
             return CP_R(-1.0);
         }
         f[0] = f[1];
         f[1] = f[2];
-        f[2] = -w * sp;
+        f[2] = -pf.w * sp;
         if (i > 0u && i % 2u == 0u) {
             phi += span / (cp_real)(3u * total) * (f[0] + CP_R(4.0) * f[1] + f[2]);
         }
@@ -267,7 +279,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
                 w = cp_fabs(rmf_phi(g, g->t0 + span * ((cp_real)(i - GSR_RMF_SUB / 2u) /
                                                         (cp_real)total)) - pm);
                 /* NaN is sticky (w > NaN is false): a NaN error fails CP_ERR_TOL */
-                worst = (w > worst || !cp_isfinite(w)) ? w : worst;
+                worst = (w > worst || !fin(w)) ? w : worst;
             }
         }
     }
@@ -290,12 +302,13 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
     g->section = cf->section;
     g->d1 = CP_R(0.0);
     for (k = 0; k < 7u; k++) {
+        /* the 7 functions (|w| <= GSR_W_MAX), then ref (3 reals, i < GSR_W) */
         const cp_real *f = k < 3u ? cf->c[k] : (k < 6u ? cf->r[k - 3u] : &cf->ref.x);
         for (i = 0; i < (k < 6u ? GSR_FN : 3u); i++) {
-            if (!cp_isfinite(f[i])) {
+            if (!fin(f[i])) {
                 return CP_ERR_NONFINITE;
             }
-            if (!(cp_fabs(f[i]) <= (i == GSR_W && k < 6u ? GSR_W_MAX : GSR_COEF_MAX))) {
+            if (!(cp_fabs(f[i]) <= (i == GSR_W ? GSR_W_MAX : GSR_COEF_MAX))) {
                 return CP_ERR_RANGE;
             }
         }
@@ -530,7 +543,7 @@ cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real th)
 /* ---- iterator ---------------------------------------------------------------------- */
 
 /* Section parameter of eccentric angle th: th itself (TRIG) or psi (RATIONAL). */
-static cp_real sigma_of(const struct gsr_path *it, cp_real th)
+static CP_NOINLINE cp_real sigma_of(const struct gsr_path *it, cp_real th)
 {
     return it->g.section == GSR_SECTION_TRIG ? th : gsr_psi(th);
 }
@@ -555,7 +568,7 @@ static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, int32_t *l
 {
     uint32_t st = it->steps, lk = (uint32_t)it->link + 1u, j = k / (st + lk), r = k % (st + lk);
     uint32_t back = j & 1u, c = it->mode == TOOLPATH_LINES, i = back ? st - r : r;
-    cp_real a0 = c ? CP_R(0.0) : it->s0, a1 = c ? CP_R(1.0) : it->s1, f = fixed(it, j);
+    cp_real a0 = it->s0, a1 = it->s1, f = fixed(it, j);
     *line = (int32_t)j;
     if (r > st) { /* link point r - st */
         *line = -1;
@@ -598,7 +611,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
     }
     g = CP_R(1.0) - s->k1 * (s->fn * it->cc[0] + it->tool_r * dot(&pt->n, &s->n)) -
         s->k2 * (s->fb * it->cc[1] + it->tool_r * dot(&pt->n, &s->b));
-    if (err == CP_OK && !cp_isfinite(pt->p.x + pt->p.y + pt->p.z + g)) {
+    if (err == CP_OK && !fin(pt->p.x + pt->p.y + pt->p.z + g)) {
         err = CP_ERR_NUMERIC;
     }
     return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;
@@ -630,7 +643,7 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
             px[0] = cp_sqrt(dot(&m.p, &m.p));
             sag[c] = px[0] > sag[c] ? px[0] : sag[c];
         }
-        a = b;
+        a.p = b.p;
         pline = line;
         px[0] = x[0];
         px[1] = x[1];
@@ -657,7 +670,7 @@ static int validate(const struct toolpath_cfg *c)
         (c->output == TOOLPATH_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
         return CP_ERR_INVAL;
     }
-    if (!cp_isfinite(c->u0 + c->u1 + c->tol + c->tool_r)) {
+    if (!fin(c->u0 + c->u1 + c->tol + c->tool_r)) {
         return CP_ERR_NONFINITE;
     }
     if (c->n > CP_MAX_LINES || c->steps > CP_MAX_STEPS) {
@@ -676,7 +689,8 @@ static int validate(const struct toolpath_cfg *c)
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct toolpath_cfg *rc)
 {
     cp_real tol, sag[2];
-    uint32_t st, lk;
+    uint32_t m[2];             /* steps, link + 1 */
+    unsigned auto_m;           /* bit c: m[c] derived from tol (else given) */
     int round, err;
     if (it == NULL || rc == NULL) {
         return CP_ERR_INVAL;
@@ -695,29 +709,34 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
     it->tool_r = rc->tool_r;
     it->v0 = rc->u0;
     it->dv = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : CP_R(0.0);
-    it->s0 = sigma_of(it, rc->u0);
-    it->s1 = sigma_of(it, rc->u1);
+    it->s0 = CP_R(0.0); /* LINES: u runs from 0 to 1 */
+    it->s1 = CP_R(1.0);
+    if (it->mode == TOOLPATH_CIRCLES) {
+        it->s0 = sigma_of(it, rc->u0);
+        it->s1 = sigma_of(it, rc->u1);
+    }
     tol = rc->tol > CP_R(0.0) ? rc->tol : CP_R(1e-3);
-    st = rc->steps ? rc->steps : 8u;
-    lk = (rc->link != TOOLPATH_LINK_AUTO && it->n > 1u) ? rc->link : 0u;
+    auto_m = (unsigned)(rc->steps == 0u) |
+             ((unsigned)(rc->link == TOOLPATH_LINK_AUTO && it->n > 1u) << 1);
+    m[0] = rc->steps ? rc->steps : 8u;
+    m[1] = (auto_m > 1u || it->n < 2u ? 0u : rc->link) + 1u;
     for (round = 0; err == CP_OK && round <= GSR_WALK_ROUNDS; round++) {
-        int fs, fl;
-        it->steps = (uint16_t)st;
-        it->link = (uint16_t)lk;
-        it->count = (uint32_t)it->n * (st + 1u) + (uint32_t)(it->n - 1u) * lk;
+        unsigned c, more = 0;
+        it->steps = (uint16_t)m[0];
+        it->link = (uint16_t)(m[1] - 1u);
+        it->count = (uint32_t)it->n * (m[0] + 1u) + (uint32_t)(it->n - 1u) * (m[1] - 1u);
         err = walk(it, sag);
-        fs = rc->steps == 0u && sag[0] > SAG_MARGIN * tol;
-        fl = rc->link == TOOLPATH_LINK_AUTO && it->n > 1u && sag[1] > SAG_MARGIN * tol;
-        if (err == CP_OK && !fs && !fl) {
+        for (c = 0; c < 2u && err == CP_OK; c++) { /* steps, then link + 1 (segments) */
+            if (((auto_m >> c) & 1u) && sag[c] > SAG_MARGIN * tol) {
+                m[c] = grow(m[c], sag[c], tol, c ? CP_MAX_LINK + 1u : CP_MAX_STEPS);
+                more = 1;
+            }
+        }
+        if (err == CP_OK && !more) {
             return gsr_path_seek(it, 0u);
         }
-        if (fs) {
-            st = grow(st, sag[0], tol, CP_MAX_STEPS);
-        }
-        if (fl) {
-            lk = grow(lk + 1u, sag[1], tol, CP_MAX_LINK + 1u) - 1u;
-        }
-        if (err == CP_OK && (round == GSR_WALK_ROUNDS || st == 0u || lk > CP_MAX_LINK)) {
+        /* grow gives 0 at its max: the link count then wraps above CP_MAX_LINK */
+        if (err == CP_OK && (round == GSR_WALK_ROUNDS || m[0] == 0u || m[1] - 1u > CP_MAX_LINK)) {
             err = CP_ERR_TOL;
         }
     }
@@ -730,7 +749,7 @@ uint32_t gsr_path_count(const struct gsr_path *it)
     return it->count;
 }
 
-int gsr_path_seek(struct gsr_path *it, uint32_t k)
+CP_NOINLINE int gsr_path_seek(struct gsr_path *it, uint32_t k)
 {
     if (k > it->count) {
         return CP_ERR_RANGE;

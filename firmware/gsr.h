@@ -279,7 +279,8 @@ struct gsr_path {
     uint16_t n, steps, link; /* lines/rings, steps per line/ring, link points */
     uint32_t count, k;       /* total points, points emitted (next k) */
     cp_real tool_r;          /* mm */
-    cp_real s0, s1;          /* section parameter (theta or psi) of v0 and v1 */
+    cp_real s0, s1;          /* ends of the running coordinate: LINES u = 0, 1; CIRCLES the
+                                section parameter (theta or psi) of v0 and v1 */
     cp_real v0, dv;          /* LINES: theta_j = v0 + j dv, radians */
     cp_real su;              /* u of the cached section (-1: none) */
     cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */

@@ -79,7 +79,7 @@ int job_gsr_command(struct job *j, const struct job_line *l)
 {
     struct gsr_cfg *c;
     cp_real v[GSR_FN];
-    unsigned cmd, k, na, i, bz;
+    unsigned cmd, k, na, i, bz, bit, mask, have;
     int s;
     cmd = pick(l, 0u, 0u, &na);
     if (j == NULL || na > 7u) {
@@ -104,9 +104,14 @@ int job_gsr_command(struct job *j, const struct job_line *l)
             return CP_ST_OUT_OF_RANGE;
         }
     }
-    v[GSR_W] = na == GSR_FN ? v[GSR_W] * CP_DEG2RAD : CP_R(0.0);
+    if (na == GSR_FN) {
+        v[GSR_W] *= CP_DEG2RAD;
+    }
     c = &j->geom.gsr;
     bz = k >= 3u;
+    bit = 0u;  /* c->set bit of this command */
+    mask = 0u; /* c->set bits that complete the part */
+    have = 0u; /* its j->have bit, once complete */
     switch (cmd) {
     case 0u:                  /* CENTER */
         if (bz != c->centre) { /* the other form: start afresh */
@@ -118,19 +123,17 @@ int job_gsr_command(struct job *j, const struct job_line *l)
         for (i = 0; i < na; i++) {
             c->c[bz ? i : k][bz ? k - 3u : i] = v[i];
         }
-        c->set |= (uint8_t)(bz << (k & 3u)); /* P0..P3 (k = 3..6): one bit each */
-        if (!bz || (c->set & SET_BEZIER) == SET_BEZIER) {
-            j->have |= JOB_HAVE_GSR_CENTER;
-        }
+        bit = bz << (k & 3u); /* P0..P3 (k = 3..6): one bit each, all four needed */
+        mask = bz ? SET_BEZIER : 0u;
+        have = JOB_HAVE_GSR_CENTER;
         break;
     case 1u: /* RADII */
         for (i = 0; i < GSR_FN; i++) {
             c->r[k][i] = v[i];
         }
-        c->set |= (uint8_t)((0x10u << k) & SET_RADII);
-        if ((c->set & SET_RADII) == SET_RADII) {
-            j->have |= JOB_HAVE_GSR_RADII;
-        }
+        bit = (0x10u << k) & SET_RADII; /* N and B needed */
+        mask = SET_RADII;
+        have = JOB_HAVE_GSR_RADII;
         break;
     case 2u: /* FRAME */
         if (na != 0u) {
@@ -142,11 +145,15 @@ int job_gsr_command(struct job *j, const struct job_line *l)
             c->ref.z = v[2];
         }
         c->frame = (uint8_t)k;
-        j->have |= JOB_HAVE_GSR_FRAME;
+        have = JOB_HAVE_GSR_FRAME;
         break;
     default: /* FORM */
         c->section = (uint8_t)k;
         break;
+    }
+    c->set |= (uint8_t)bit;
+    if ((c->set & mask) == mask) {
+        j->have |= (uint16_t)have;
     }
     return CP_ST_OK;
 }
