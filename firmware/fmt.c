@@ -5,37 +5,41 @@
 
 int fmt_str(char *buf, size_t cap, size_t *pos, const char *s)
 {
-    size_t n = 0;
     size_t i;
-    /* bounded: a string longer than the remaining room is an error anyway */
-    while (n <= cap && s[n] != '\0') {
+    /* bounded by cap: a string longer than the remaining room is an error (the bytes
+     * copied so far stay beyond *pos, which does not move) */
+    for (i = 0; s[i] != '\0'; i++) {
+        if (*pos + i >= cap) {
+            return CP_ERR_FULL;
+        }
+        buf[*pos + i] = s[i];
+    }
+    *pos += i;
+    return CP_OK;
+}
+
+/* The n lowest decimal digits of v into dst[0..n), last first. */
+static CP_NOINLINE void put_digits(char *dst, unsigned n, uint32_t v)
+{
+    unsigned i;
+    for (i = n; i > 0u; i--) {
+        dst[i - 1u] = (char)('0' + (v % 10u));
+        v /= 10u;
+    }
+}
+
+int fmt_u32(char *buf, size_t cap, size_t *pos, uint32_t v)
+{
+    uint32_t t = v;
+    unsigned n = 1;
+    while (t >= 10u && n < 10u) { /* the digits: at most 10 for a uint32_t */
+        t /= 10u;
         n++;
     }
     if (*pos + n > cap) {
         return CP_ERR_FULL;
     }
-    for (i = 0; i < n; i++) {
-        buf[*pos + i] = s[i];
-    }
-    *pos += n;
-    return CP_OK;
-}
-
-int fmt_u32(char *buf, size_t cap, size_t *pos, uint32_t v)
-{
-    char tmp[10];
-    unsigned n = 0;
-    unsigned i;
-    do { /* at most 10 digits for a uint32_t */
-        tmp[n++] = (char)('0' + (v % 10u));
-        v /= 10u;
-    } while (v != 0u && n < sizeof tmp);
-    if (*pos + n > cap) {
-        return CP_ERR_FULL;
-    }
-    for (i = 0; i < n; i++) {
-        buf[*pos + i] = tmp[n - 1u - i];
-    }
+    put_digits(buf + *pos, n, v);
     *pos += n;
     return CP_OK;
 }
@@ -86,10 +90,7 @@ int fmt_fixed(char *buf, size_t cap, size_t *pos, int32_t v, unsigned decimals)
         return CP_ERR_FULL;
     }
     buf[(*pos)++] = '.';
-    for (i = decimals; i > 0u; i--) { /* the fraction's digits, last first */
-        buf[*pos + i - 1u] = (char)('0' + fp % 10u);
-        fp /= 10u;
-    }
+    put_digits(buf + *pos, decimals, fp); /* the fraction's digits, leading zeros too */
     *pos += decimals;
     return CP_OK;
 }

@@ -100,10 +100,10 @@ int frame_rx_feed(struct frame_rx *r, uint8_t c)
     }
     /* complete: check sync and CRC */
     {
+        /* the CRC over len..payload followed by its own big-endian CRC is 0 exactly
+         * when that CRC is right (CCITT-FALSE: not reflected, no final xor) */
         uint8_t n = r->buf[0];
-        uint16_t crc = frame_crc16(0xFFFFu, r->buf, (size_t)n - 3u);
-        int ok = r->buf[n - 1u] == FRAME_SYNC && r->buf[n - 3u] == (uint8_t)(crc >> 8) &&
-                 r->buf[n - 2u] == (uint8_t)(crc & 0xFFu);
+        int ok = r->buf[n - 1u] == FRAME_SYNC && frame_crc16(0xFFFFu, r->buf, (size_t)n - 1u) == 0u;
         if (ok) {
             r->len = 0;
             return 1;

@@ -120,23 +120,13 @@ int job_ready(const struct job *j)
     return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
 }
 
-/* Keywords, upper case, in fixed-width rows (no pointer table). The canal's job
+/* Keyword lists: upper case, packed one after the other, each ended by its NUL (no
+ * pointer table, no padding; parse_kw), each shorter than PARSE_KW_MAX. The canal's job
  * commands first (enum order), then the protocol's: job_is_command knows them all. */
-#define KW_W 9u
-static const char kw_cmd[][KW_W] = {"CURVE", "RADIUS", "TOOL",     "LINES",   "CIRCLES",
-                                    "STEPS", "TOL",    "FEED",     "RXBUF",   "FORMAT",
-                                    "CHECKSUM", "SURFACE", "RUN",  "RESUME"};
+static const char kw_cmd[] = "CURVE\0RADIUS\0TOOL\0LINES\0CIRCLES\0STEPS\0TOL\0FEED\0RXBUF\0"
+                             "FORMAT\0CHECKSUM\0SURFACE\0RUN\0RESUME";
 enum { KW_CURVE, KW_RADIUS, KW_TOOL, KW_LINES, KW_CIRCLES, KW_STEPS, KW_TOL, KW_FEED, KW_RXBUF,
        KW_FORMAT, KW_CHECKSUM, KW_JOB, KW_ALL = 14 };
-
-/* Index of s[0..n) among the cnt keywords of tab (rows of width w), or cnt. */
-static unsigned kw_find(const char *s, size_t n, const char *tab, unsigned w, unsigned cnt)
-{
-    unsigned k;
-    for (k = 0; k < cnt && !parse_is(s, n, tab + k * w); k++) {
-    }
-    return k;
-}
 
 int job_is_command(const char *line, size_t len)
 {
@@ -147,7 +137,7 @@ int job_is_command(const char *line, size_t len)
     while (n < len && line[n] != ' ') {
         n++;
     }
-    if (kw_find(line, n, kw_cmd[0], KW_W, KW_ALL) < KW_ALL) {
+    if (parse_kw(line, n, kw_cmd, KW_ALL) < KW_ALL) {
         return 1;
     }
     ln = (uint16_t)(n < 0xFFFFu ? n : 0xFFFFu);
@@ -234,17 +224,16 @@ int job_status_of(int err)
     }
 }
 
-/* Token t of l against the cnt keywords of tab (rows of width w): index or cnt. */
-static unsigned tok_kw(const struct job_line *l, unsigned t, const char *tab, unsigned w,
-                       unsigned cnt)
+/* Token t of l against the cnt packed keywords of tab: index or cnt. */
+static unsigned tok_kw(const struct job_line *l, unsigned t, const char *tab, unsigned cnt)
 {
-    return kw_find(l->s + l->st[t], l->ln[t], tab, w, cnt);
+    return parse_kw(l->s + l->st[t], l->ln[t], tab, cnt);
 }
 
 /* CURVE and RADIUS kinds (enum canal_curve_kind, enum canal_radius_kind order) and
  * their numbers (the canal's own counts, curve_nparams/radius_nparams in canal.c). */
-static const char kind_names[2][4][8] = {{"LINE", "ARC", "ELLIPSE", "BEZIER"},
-                                         {"CONST", "LINEAR", "COS", "CUBIC"}};
+static const char kind_names[] = "LINE\0ARC\0ELLIPSE\0BEZIER\0" /* CURVE: 0..3 */
+                                 "CONST\0LINEAR\0COS\0CUBIC";      /* RADIUS: 4..7 */
 static const uint8_t kind_arity[2][4] = {{4u, 5u, 6u, 8u}, {1u, 2u, 3u, 4u}};
 
 /* "CURVE <KIND> n1 .. nk" (radius = 0) or "RADIUS <KIND> n1 .. nk" (radius = 1). */
@@ -257,10 +246,11 @@ static int cmd_kind(struct job *j, const struct job_line *l, unsigned radius)
     if (l->nt < 2u) {
         return CP_ST_BAD_ARITY;
     }
-    k = tok_kw(l, 1u, kind_names[radius][0], 8u, 4u);
-    if (k == 4u) {
+    k = tok_kw(l, 1u, kind_names, 8u);
+    if (k / 4u != radius) { /* unknown, or the other command's kind */
         return CP_ST_BAD_KEYWORD;
     }
+    k %= 4u;
     na = kind_arity[radius][k];
     if (l->nt != 2u + na) {
         return CP_ST_BAD_ARITY;
@@ -326,19 +316,20 @@ static int cmd_raster(struct job *j, int circles, const struct job_line *l)
 /* TOOL NONE | TOOL BALL r [TIP|CENTRE|CENTER] */
 static int cmd_tool(struct job *j, const struct job_line *l)
 {
-    static const char opt[][7] = {"TIP", "CENTRE", "CENTER"};
+    static const char opt[] = "TIP\0CENTRE\0CENTER";
     cp_real v;
-    unsigned o = 0;
+    unsigned o = 0, k;
     int s;
-    if (l->nt == 2u && parse_is(l->s + l->st[1], l->ln[1], "NONE")) {
+    if (l->nt < 2u) {
+        return CP_ST_BAD_ARITY;
+    }
+    k = tok_kw(l, 1u, "NONE\0BALL", 2u);
+    if (k == 0u && l->nt == 2u) { /* NONE */
         j->cfg.output = TOOLPATH_OUT_SURFACE;
         j->cfg.tool_r = CP_R(0.0);
         return CP_ST_OK;
     }
-    if (l->nt < 2u) {
-        return CP_ST_BAD_ARITY;
-    }
-    if (!parse_is(l->s + l->st[1], l->ln[1], "BALL")) {
+    if (k != 1u) { /* not BALL (or NONE with arguments) */
         return CP_ST_BAD_KEYWORD;
     }
     if (l->nt != 3u && l->nt != 4u) {
@@ -352,7 +343,7 @@ static int cmd_tool(struct job *j, const struct job_line *l)
         return CP_ST_OUT_OF_RANGE;
     }
     if (l->nt == 4u) {
-        o = tok_kw(l, 3u, opt[0], 7u, 3u);
+        o = tok_kw(l, 3u, opt, 3u);
         if (o == 3u) {
             return CP_ST_BAD_KEYWORD;
         }
@@ -365,7 +356,7 @@ static int cmd_tool(struct job *j, const struct job_line *l)
 /* The one-argument commands STEPS, TOL, FEED, RXBUF, FORMAT, CHECKSUM (k = KW_*). */
 static int cmd_one(struct job *j, unsigned k, const struct job_line *l)
 {
-    static const char word[][7] = {"GCODE", "FRAMES", "OFF", "ON"}; /* value = index & 1 */
+    static const char word[] = "GCODE\0FRAMES\0OFF\0ON"; /* value = index & 1 */
     cp_real v = CP_R(0.0);
     uint32_t u = 0;
     int s;
@@ -374,10 +365,11 @@ static int cmd_one(struct job *j, unsigned k, const struct job_line *l)
     }
     if (k >= KW_FORMAT) { /* FORMAT GCODE|FRAMES, CHECKSUM OFF|ON */
         unsigned w = k == KW_FORMAT ? 0u : 2u;
-        unsigned i = tok_kw(l, 1u, word[w], 7u, 2u);
-        if (i == 2u) {
+        unsigned i = tok_kw(l, 1u, word, 4u);
+        if ((i & ~1u) != w) { /* unknown, or the other command's word */
             return CP_ST_BAD_KEYWORD;
         }
+        i &= 1u;
         if (k == KW_FORMAT) {
             j->format = (uint8_t)i; /* JOB_GCODE, JOB_FRAMES */
         } else {
@@ -428,11 +420,11 @@ static int cmd_one(struct job *j, unsigned k, const struct job_line *l)
 
 int job_command(struct job *j, const char *line, size_t len)
 {
-    static const char names[PATH_KINDS][8] = {"CANAL", "GSR", "CHANNEL", "DRC"};
+    static const char names[] = "CANAL\0GSR\0CHANNEL\0DRC"; /* enum path_kind */
     uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
     unsigned nt = parse_split(line, len, st, ln, JOB_MAX_TOKENS);
     struct job_line l;
-    unsigned k;
+    unsigned k, kw;
     if (nt == 0u) {
         return JOB_NOT_MINE;
     }
@@ -440,11 +432,12 @@ int job_command(struct job *j, const char *line, size_t len)
     l.st = st;
     l.ln = ln;
     l.nt = nt > JOB_MAX_TOKENS ? JOB_MAX_TOKENS : nt;
-    if (tok_kw(&l, 0u, kw_cmd[KW_JOB], KW_W, 1u) == 0u) { /* SURFACE */
+    kw = tok_kw(&l, 0u, kw_cmd, KW_ALL); /* the keywords are distinct */
+    if (kw == KW_JOB) { /* SURFACE */
         if (nt != 2u) {
             return CP_ST_BAD_ARITY;
         }
-        k = tok_kw(&l, 1u, names[0], 8u, PATH_KINDS);
+        k = tok_kw(&l, 1u, names, PATH_KINDS);
         if (k == PATH_KINDS || need[k] == 0u) {
             return CP_ST_BAD_KEYWORD;
         }
@@ -464,8 +457,8 @@ int job_command(struct job *j, const char *line, size_t len)
             return j->kind == k ? model_command(k, j, &l) : CP_ST_WRONG_SURFACE;
         }
     }
-    k = tok_kw(&l, 0u, kw_cmd[0], KW_W, KW_JOB);
-    if (k == KW_JOB) {
+    k = kw;
+    if (k >= KW_JOB) { /* RUN, RESUME (the protocol's) or no job command */
         return JOB_NOT_MINE;
     }
     if (nt > JOB_MAX_TOKENS) {

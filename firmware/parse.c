@@ -25,8 +25,19 @@ int parse_is(const char *s, size_t n, const char *kw)
     return kw[n] == '\0';
 }
 
+unsigned parse_kw(const char *s, size_t n, const char *tab, unsigned cnt)
+{
+    unsigned k, i;
+    for (k = 0; k < cnt && !parse_is(s, n, tab); k++) {
+        for (i = 0; i < PARSE_KW_MAX && tab[i] != '\0'; i++) { /* to the next keyword */
+        }
+        tab += i + 1u;
+    }
+    return k;
+}
+
 /* 10^e for 0 <= e <= 40 by squaring (exact up to 10^10 in float, 10^22 in double). */
-static cp_real pow10_real(unsigned e)
+static CP_NOINLINE cp_real pow10_real(unsigned e)
 {
     cp_real r = CP_R(1.0), b = CP_R(10.0);
     unsigned i;
@@ -54,8 +65,7 @@ int parse_real(const char *s, size_t n, cp_real *out)
         neg = s[0] == '-';
         i = 1;
     }
-    if (parse_is(s + i, n - i, "NAN") || parse_is(s + i, n - i, "INF") ||
-        parse_is(s + i, n - i, "INFINITY")) {
+    if (parse_kw(s + i, n - i, "NAN\0INF\0INFINITY", 3u) < 3u) {
         return CP_ST_NONFINITE;
     }
     /* digits, with at most one '.' among them: a kept digit after it scales by 1/10,

@@ -38,4 +38,9 @@ unsigned parse_split(const char *line, size_t len, uint16_t *start, uint16_t *tl
 /* Case-insensitive comparison of s[0..n) with an upper-case keyword. */
 int parse_is(const char *s, size_t n, const char *kw);
 
+/* Index of s[0..n) (parse_is) among the cnt upper-case keywords packed in tab, each
+ * ended by its NUL and shorter than PARSE_KW_MAX ("RUN\0RESUME"), or cnt if none. */
+#define PARSE_KW_MAX 16u
+unsigned parse_kw(const char *s, size_t n, const char *tab, unsigned cnt);
+
 #endif /* PARSE_H */

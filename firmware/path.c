@@ -14,9 +14,10 @@ int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
     p->info.steps = 0;
     p->info.link = 0;
     p->info.mode = 0;
-    if (raster == NULL) {
+    if (raster == NULL || (kind != PATH_CANAL && geom == NULL)) {
         return CP_ERR_INVAL;
     }
+    /* the model's init (on error its count is 0), then the stream header */
     switch (kind) {
     case PATH_CANAL:
         err = toolpath_init(&p->u.canal, raster);
@@ -32,9 +33,6 @@ int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
         return CP_OK;
 #if PATH_HAVE_CHANNEL
     case PATH_CHANNEL:
-        if (geom == NULL) {
-            return CP_ERR_INVAL;
-        }
         err = channel_path_init(&p->u.channel, &geom->channel, raster);
         if (err != CP_OK) {
             p->u.channel.count = 0;
@@ -49,9 +47,6 @@ int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
 #endif
 #if PATH_HAVE_GSR
     case PATH_GSR:
-        if (geom == NULL) {
-            return CP_ERR_INVAL;
-        }
         err = gsr_path_init(&p->u.gsr, &geom->gsr, raster);
         if (err != CP_OK) {
             return err; /* count is 0 */
@@ -65,9 +60,6 @@ int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
 #endif
 #if PATH_HAVE_DRC
     case PATH_DRC:
-        if (geom == NULL) {
-            return CP_ERR_INVAL;
-        }
         err = drc_path_init(&p->u.drc, &geom->drc, raster);
         if (err != CP_OK) {
             return err; /* count is 0 */

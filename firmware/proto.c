@@ -162,23 +162,15 @@ static void reply_report(struct proto *p)
 /*---------------------------------------------------------------------------
  * Run control
  *-------------------------------------------------------------------------*/
+static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, size_t cap);
+
 static void run_finish(struct proto *p, int status)
 {
     if (p->fmt == JOB_FRAMES && status != CP_ST_OK) {
         /* tell a binary host why the stream stopped, then the text reply */
-        uint8_t pl[5], buf[16];
-        int n;
-        uint32_t sent = p->next > 0u ? p->next - 1u : 0u; /* frames after BEGIN */
-        pl[0] = (uint8_t)status;
-        frame_put_u32(pl + 1, sent < p->end - 2u ? sent : p->end - 2u); /* points only */
-        n = frame_encode((uint8_t)p->next, FRAME_END, pl, sizeof pl, buf, sizeof buf);
+        int n = frames_item(p, p->next, status, p->tx + p->tx_len, sizeof p->tx - p->tx_len);
         if (n > 0) {
-            size_t pos = p->tx_len;
-            int i;
-            for (i = 0; i < n && pos < sizeof p->tx; i++) {
-                p->tx[pos++] = buf[i];
-            }
-            p->tx_len = (uint16_t)pos;
+            p->tx_len = (uint16_t)(p->tx_len + n);
         }
     }
     reply_status(p, status);
@@ -245,7 +237,7 @@ static int point_at(struct proto *p, uint32_t k, struct toolpath_pt *pt)
 }
 
 /* Round to an integer count of `scale` units: deterministic (floor is exact). */
-static int32_t quantize(cp_real v, cp_real scale)
+static CP_NOINLINE int32_t quantize(cp_real v, cp_real scale)
 {
     return (int32_t)cp_floor(v * scale + CP_R(0.5));
 }
@@ -299,12 +291,16 @@ static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
     return err != CP_OK ? CP_ERR_FULL : (int)pos;
 }
 
-/* Build FRAMES stream item `idx` into out; returns its length or < 0. */
-static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
+/* Build FRAMES stream item `idx` into out; returns its length or < 0. With a status
+ * other than CP_ST_OK: the END frame of a stopped run (idx = next; the points are
+ * the frames sent after BEGIN). */
+static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, size_t cap)
 {
     uint8_t pl[FRAME_POINT_PAYLOAD];
-    uint32_t npts = p->end - 2u;
-    if (idx == 0u) {
+    uint32_t npts = p->end - 2u, sent = idx > 0u ? idx - 1u : 0u;
+    if (status != CP_ST_OK) {
+        /* END below */
+    } else if (idx == 0u) {
         frame_put_u32(pl, path_count(&p->path));
         frame_put_u32(pl + 4, p->start_k);
         frame_put_u16(pl + 8, p->path.info.n);
@@ -312,8 +308,7 @@ static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
         frame_put_u16(pl + 12, p->path.info.link);
         pl[14] = p->path.info.mode;
         return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 15u, out, cap);
-    }
-    if (idx <= npts) {
+    } else if (idx <= npts) {
         struct toolpath_pt pt;
         uint32_t k = p->start_k + idx - 1u;
         int e = point_at(p, k, &pt);
@@ -337,8 +332,8 @@ static int frames_item(struct proto *p, uint32_t idx, uint8_t *out, size_t cap)
         frame_put_u16(pl + 24, pt.index);
         return frame_encode((uint8_t)idx, FRAME_POINT, pl, FRAME_POINT_PAYLOAD, out, cap);
     }
-    pl[0] = CP_ST_OK;
-    frame_put_u32(pl + 1, npts);
+    pl[0] = (uint8_t)status;
+    frame_put_u32(pl + 1, sent < npts ? sent : npts); /* the whole run: idx = npts + 1 */
     return frame_encode((uint8_t)idx, FRAME_END, pl, 5u, out, cap);
 }
 
@@ -416,7 +411,7 @@ static int run_emit(struct proto *p)
         p->t_last = now;
     }
     if (p->state == PROTO_RUN && p->next < p->end && p->next - p->acked < PROTO_WINDOW) {
-        n = frames_item(p, p->next, p->tx + p->tx_len, FRAME_MAX);
+        n = frames_item(p, p->next, CP_ST_OK, p->tx + p->tx_len, FRAME_MAX);
         if (n < 0) {
             run_finish(p, CP_ST_NUMERIC);
             return 1;
@@ -431,31 +426,24 @@ static int run_emit(struct proto *p)
     return 0;
 }
 
-/* Full sequence number of a received 8-bit seq, in [acked, next]; or -1. */
-static int64_t frame_full_seq(const struct proto *p, uint8_t s)
-{
-    uint32_t full = p->acked + (uint8_t)(s - (uint8_t)p->acked);
-    return full <= p->next ? (int64_t)full : -1;
-}
-
 static void frames_rx(struct proto *p, const uint8_t *f)
 {
-    int64_t full;
+    /* the full sequence number of the received 8-bit seq, counted from acked; it is
+     * one of ours only if it is <= next */
+    uint32_t full = p->acked + (uint8_t)(f[1] - (uint8_t)p->acked);
     uint32_t now = hal_uart_now_ms(p->uart);
     switch (f[2]) {
     case FRAME_ACK:
-        full = frame_full_seq(p, f[1]);
-        if (full > (int64_t)p->acked) {
-            p->acked = (uint32_t)full;
+        if (full <= p->next && full > p->acked) {
+            p->acked = full;
             p->t_last = now;
             p->retries = 0;
         }
         break;
     case FRAME_NAK:
-        full = frame_full_seq(p, f[1]);
-        if (full >= (int64_t)p->acked && full < (int64_t)p->next) {
-            p->acked = (uint32_t)full; /* everything before it arrived */
-            p->next = (uint32_t)full;
+        if (full >= p->acked && full < p->next) {
+            p->acked = full; /* everything before it arrived */
+            p->next = full;
             p->t_last = now;
         }
         break;
@@ -477,16 +465,10 @@ static void frames_rx(struct proto *p, const uint8_t *f)
 /*---------------------------------------------------------------------------
  * Lines
  *-------------------------------------------------------------------------*/
-static int starts_with(const struct proto *p, const char *kw)
-{
-    uint16_t i;
-    for (i = 0; kw[i] != '\0'; i++) {
-        if (i >= p->line_len || p->line[i] != kw[i]) {
-            return 0;
-        }
-    }
-    return 1;
-}
+/* The machine's responses, in the order they are tried: "ok" (the whole line), the
+ * errors "error:", "ALARM:", "Error:", the resend requests "rs ", "Resend:". */
+enum { M_OK, M_ERROR, M_ALARM, M_ERROR2, M_RS, M_RESEND, M_NONE };
+static const char machine_pre[] = "ok\0error:\0ALARM:\0Error:\0rs \0Resend:";
 
 /* A line from the machine during a GCODE run (or a stray one when idle).
  * Returns 1 if it was a machine response (consumed), else 0. */
@@ -494,38 +476,41 @@ static int machine_line(struct proto *p)
 {
     /* the machine's lines act only on a GCODE run (when idle they are just consumed) */
     int gc = p->state != PROTO_IDLE && p->fmt == JOB_GCODE;
-    int rs;
-    if (starts_with(p, "ok") && p->line_len == 2u) {
-        if (gc) {
-            p->t_last = hal_uart_now_ms(p->uart);
-            if (!p->resync && p->ring_n > 0u) {
-                p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
-                p->ring_head = (uint8_t)((p->ring_head + 1u) % PROTO_RING);
-                p->ring_n--;
-                p->acked++;
-            }
+    const char *kw = machine_pre;
+    unsigned m, a = 0;
+    for (m = 0; m < M_NONE; m++) { /* the first prefix the line starts with */
+        for (a = 0; kw[a] != '\0' && a < p->line_len && p->line[a] == kw[a]; a++) {
         }
-        return 1;
-    }
-    if (starts_with(p, "error:") || starts_with(p, "ALARM:") || starts_with(p, "Error:")) {
-        if (gc) {
-            p->t_last = hal_uart_now_ms(p->uart);
-            /* with checksums a machine error precedes its Resend: request */
-            if (!p->job.checksum || starts_with(p, "ALARM:")) {
-                run_finish(p, CP_ST_PEER_ERROR);
-            }
+        if (kw[a] == '\0' && (m != M_OK || p->line_len == 2u)) {
+            break;
         }
-        return 1;
-    }
-    rs = starts_with(p, "rs ");
-    if (rs || starts_with(p, "Resend:")) {
-        uint16_t a = rs ? 3u : 7u;
-        uint32_t n;
-        while (a < p->line_len && p->line[a] == ' ') {
+        while (a < 8u && kw[a] != '\0') { /* to the next prefix (all shorter than 8) */
             a++;
         }
-        if (gc) {
-            p->t_last = hal_uart_now_ms(p->uart);
+        kw += a + 1u;
+    }
+    if (m == M_NONE) {
+        return 0;
+    }
+    if (gc) {
+        p->t_last = hal_uart_now_ms(p->uart);
+    }
+    if (m == M_OK) {
+        if (gc && !p->resync && p->ring_n > 0u) {
+            p->inflight = (uint16_t)(p->inflight - p->ring[p->ring_head]);
+            p->ring_head = (uint8_t)((p->ring_head + 1u) % PROTO_RING);
+            p->ring_n--;
+            p->acked++;
+        }
+    } else if (m < M_RS) {
+        /* with checksums a machine error precedes its Resend: request */
+        if (gc && (!p->job.checksum || m == M_ALARM)) {
+            run_finish(p, CP_ST_PEER_ERROR);
+        }
+    } else {
+        uint32_t n;
+        while (a < p->line_len && p->line[a] == ' ') { /* a: after the prefix */
+            a++;
         }
         if (gc && p->job.checksum && !p->resync) {
             if (parse_uint(p->line + a, (size_t)(p->line_len - a), 0xFFFFFFFFu, &n) == CP_ST_OK &&
@@ -542,9 +527,8 @@ static int machine_line(struct proto *p)
                 run_finish(p, CP_ST_PEER_ERROR);
             }
         }
-        return 1;
     }
-    return 0;
+    return 1;
 }
 
 static void exec_line(struct proto *p)
@@ -552,15 +536,11 @@ static void exec_line(struct proto *p)
     uint16_t a = 0, b = p->line_len;
     int st;
     p->lines_seen++;
-    if (p->state != PROTO_IDLE && (p->line_flags & (PROTO_LF_OVERFLOW | PROTO_LF_BADCHAR))) {
-        return; /* machine chatter during a run: no reply into the stream */
-    }
-    if (p->line_flags & PROTO_LF_OVERFLOW) {
-        reply_status(p, CP_ST_LINE_TOO_LONG);
-        return;
-    }
-    if (p->line_flags & PROTO_LF_BADCHAR) {
-        reply_status(p, CP_ST_BAD_CHAR);
+    if (p->line_flags != 0u) { /* PROTO_LF_OVERFLOW and/or PROTO_LF_BADCHAR */
+        if (p->state == PROTO_IDLE) { /* (machine chatter during a run: no reply into the stream) */
+            reply_status(p, (p->line_flags & PROTO_LF_OVERFLOW) ? CP_ST_LINE_TOO_LONG
+                                                                : CP_ST_BAD_CHAR);
+        }
         return;
     }
     /* trim spaces at both ends */
@@ -586,7 +566,7 @@ static void exec_line(struct proto *p)
         }
         return;
     }
-    if (parse_is(p->line, p->line_len, "$I") || parse_is(p->line, p->line_len, "HELLO")) {
+    if (parse_kw(p->line, p->line_len, "$I\0HELLO", 2u) < 2u) {
         reply_info(p);
         reply_status(p, CP_ST_OK);
         return;
@@ -600,25 +580,20 @@ static void exec_line(struct proto *p)
         return;
     }
     p->frames_tail = 0; /* a text command: late frames of the last run are over */
-    if (parse_is(p->line, p->line_len, "RUN")) {
-        st = run_start(p, 0u);
-        if (st != CP_ST_OK) {
-            reply_status(p, st);
-        }
-        return;
-    }
     {
+        /* RUN (the whole line) or RESUME k: a run from point 0 or k */
         uint16_t ts[3], tl[3];
         unsigned nt = parse_split(p->line, p->line_len, ts, tl, 2u);
-        if (nt >= 1u && parse_is(p->line + ts[0], tl[0], "RESUME")) {
+        unsigned kw = nt >= 1u ? parse_kw(p->line + ts[0], tl[0], "RUN\0RESUME", 2u) : 2u;
+        if ((kw == 0u && nt == 1u) || kw == 1u) { /* the line is trimmed: RUN alone */
             uint32_t k = 0;
-            if (nt != 2u) {
-                reply_status(p, CP_ST_BAD_ARITY);
-                return;
-            }
-            st = parse_uint(p->line + ts[1], tl[1], 0xFFFFFFFFu, &k);
-            if (st == CP_ST_OUT_OF_RANGE) {
-                st = CP_ST_RESUME_RANGE;
+            st = CP_ST_OK;
+            if (kw == 1u) {
+                st = nt != 2u ? CP_ST_BAD_ARITY
+                              : parse_uint(p->line + ts[1], tl[1], 0xFFFFFFFFu, &k);
+                if (st == CP_ST_OUT_OF_RANGE) {
+                    st = CP_ST_RESUME_RANGE;
+                }
             }
             if (st == CP_ST_OK) {
                 st = run_start(p, k);
@@ -718,16 +693,13 @@ static int tail_take(struct proto *p, uint8_t c)
     case 3u: /* type: a host -> firmware frame */
         ok = c >= FRAME_ACK && c <= FRAME_STATUS;
         break;
-    case 6u: {
-        uint16_t crc = frame_crc16(0xFFFFu, p->tail, 3u);
-        ok = c == FRAME_SYNC && p->tail[3] == (uint8_t)(crc >> 8) &&
-             p->tail[4] == (uint8_t)(crc & 0xFFu);
+    case 6u: /* sync, and the CRC over len..type and the CRC itself is 0 (frame.c) */
+        ok = c == FRAME_SYNC && frame_crc16(0xFFFFu, p->tail, 5u) == 0u;
         if (ok) {
             p->tail_len = 0; /* a late frame: dropped */
             return 1;
         }
         break;
-    }
     default:
         ok = 1;
         break;
