@@ -52,7 +52,7 @@ M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
 M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
-        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images
+        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images
 
 ##
 ## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
@@ -99,6 +99,11 @@ M4F_SET_gsr     := -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
 M4F_SET_channel := -DCP_WITH_GSR=0 -DCP_WITH_DRC=0
 M4F_SET_drc     := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0
 M4F_SET_canal   := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
+M4F_SET_gsr-channel := -DCP_WITH_DRC=0
+M4F_SET_gsr-drc     := -DCP_WITH_CHANNEL=0
+M4F_SET_channel-drc := -DCP_WITH_GSR=0
+# size-images reports these too (not guarded): the two-model sets and all four
+M4F_SIZE_SETS ?= canal gsr channel drc gsr-channel gsr-drc channel-drc all
 M4F_FW_SET   ?= canal
 M4F_IMG_SETS ?= canal gsr channel drc
 M4F_LTO      ?= 1
@@ -133,7 +138,7 @@ $(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
-.SECONDARY: $(foreach s,all gsr channel drc canal,$(call M4F_SET_OBJ,$(s)))
+.SECONDARY: $(foreach s,$(M4F_SIZE_SETS),$(call M4F_SET_OBJ,$(s)))
 
 $(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F_IMG_DIR)/set-%/path.o $(M4F_IMG_DIR)/set-%/job.o \
                  $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
@@ -190,6 +195,19 @@ guard-images: $(foreach s,$(M4F_IMG_SETS),$(M4F)/fw-$(s).elf)
 	        pass=$$((pass + 1)); echo "  PASS fw-$$s.elf: $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"{t=$$2} $$1==".bss"{b=$$2} END{print "text " t " B, bss " b " B"}'), stack $$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' $(M4F)/guard-$$s.log) B worst case"; \
 	    else fail=$$((fail + 1)); echo "  FAIL fw-$$s.elf (see $(M4F)/guard-$$s.log)"; tail -n 5 $(M4F)/guard-$$s.log; fi; \
 	done; echo "images: $$pass passed, $$fail failed"; [ $$fail -eq 0 ]
+
+## size-images: flash of every model set's image (M4F_SIZE_SETS: the guarded ones, the
+##               two-model sets and all four), or by how much the link overflows 32 KB
+size-images:
+	$(Q)for s in $(M4F_SIZE_SETS); do \
+	    out=$$($(MAKE) --no-print-directory $(M4F)/fw-$$s.elf 2>&1); \
+	    over=$$(printf '%s\n' "$$out" | sed -n 's/.*overflowed by \([0-9]*\) bytes.*/\1/p' | head -n 1); \
+	    if [ -n "$$over" ]; then printf '  %-24s %6d B flash: over the %d B budget by %d B\n' fw-$$s.elf $$(($(call budget,flash) + over)) $(call budget,flash) $$over; \
+	    elif [ -f $(M4F)/fw-$$s.elf ]; then printf '  %-24s %6d B flash: fits (%d B spare)\n' fw-$$s.elf \
+	        $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"||$$1==".isr_vector"||$$1==".data"{t+=$$2} END{print t}') \
+	        $$(($(call budget,flash) - $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"||$$1==".isr_vector"||$$1==".data"{t+=$$2} END{print t}'))); \
+	    else printf '%s\n' "$$out" | tail -n 3; fi; \
+	done
 
 guard-image-%: $(M4F)/fw-%.elf
 	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard
