@@ -29,6 +29,7 @@
 #define SIM_DEFAULT_QEMU_FW "build/m4f/fw.elf"
 #define SIM_HS_RETRY_MS 200u    /* $I is re-sent this often until answered */
 #define SIM_HS_MAX_SENDS 50u    /* and at most this many times */
+#define SIM_HS_REDO 3u          /* an incomplete answer: $I again, at most this often */
 #define SIM_DRAIN_MS 500u       /* time allowed for answers to extra $I sends */
 #define SIM_SHUTDOWN_MS 1000    /* the firmware must exit this soon after hang-up */
 #define SIM_KILL_GRACE_MS 500   /* SIGTERM -> SIGKILL */
@@ -109,13 +110,14 @@ struct hs_result {
     char why[200];
 };
 
-/* Send $I every SIM_HS_RETRY_MS until "[VER:" and "ok" arrive or timeout_ms pass. */
+/* Send $I every SIM_HS_RETRY_MS until "[VER:" and "ok" arrive or timeout_ms pass; an
+ * "ok" that came without a clean "[VER:" line before it is asked again (SIM_HS_REDO). */
 static int handshake(struct sim_link *l, unsigned timeout_ms, struct hs_result *h)
 {
     uint64_t end = sim_link_now_ms() + timeout_ms;
     struct sim_reply r;
     int rc = SIM_LINK_TIMEOUT;
-    unsigned unknown = 0;
+    unsigned unknown = 0, redo = 0;
     memset(h, 0, sizeof *h);
     while (h->sends < SIM_HS_MAX_SENDS) {
         uint64_t now = sim_link_now_ms(), d = now + SIM_HS_RETRY_MS;
@@ -137,6 +139,16 @@ static int handshake(struct sim_link *l, unsigned timeout_ms, struct hs_result *
         unknown += r.unknown;
         if (r.unknown) {
             printf("  handshake: unknown reply line \"%s\"\n", r.first_unknown);
+        }
+        if (rc == SIM_LINK_REPLY && !r.error && (!h->ver[0] || unknown) && redo < SIM_HS_REDO) {
+            /* "ok" without a clean [VER:...] before it: the start of the answer was lost
+             * (seen under QEMU on a heavily loaded host, a few bytes at connect time).
+             * Ask again: a later answer must be complete; nothing of this one counts. */
+            redo++;
+            printf("  handshake: incomplete answer, $I again (%u of %u)\n", redo, SIM_HS_REDO);
+            h->ver[0] = h->opt[0] = '\0';
+            unknown = 0;
+            continue;
         }
         if (rc != SIM_LINK_TIMEOUT) {
             break;

@@ -15,6 +15,9 @@
  *   --hang-after N  correct for N lines, then silent
  *   --stubborn      correct, but ignores SIGTERM/SIGHUP and does not exit on
  *                   hang-up (only SIGKILL ends it)
+ *   --lossy-start   correct, but the first 5 bytes of its first answer are lost (as
+ *                   seen from QEMU at connect on a loaded host): a host that asks $I
+ *                   again gets a complete answer and must go on normally
  * It exits 0 on end of file (hang-up) except in --stubborn mode.
  * A POSIX test tool (built with _XOPEN_SOURCE=700), never part of the firmware.
  */
@@ -29,6 +32,7 @@
 #define FAKE_LINE_MAX 95 /* like CP_LINE_MAX 96 minus the terminator */
 
 static unsigned slow_ms;
+static unsigned lossy; /* --lossy-start: bytes of the first answer still to drop */
 
 static void fake_sleep_ms(unsigned ms)
 {
@@ -43,6 +47,11 @@ static void fake_sleep_ms(unsigned ms)
 static void fake_put(const char *s)
 {
     size_t n = strlen(s), i;
+    while (lossy > 0u && n > 0u) { /* --lossy-start: lost on the way */
+        lossy--;
+        s++;
+        n--;
+    }
     if (slow_ms == 0u) {
         while (n > 0) {
             ssize_t w = write(1, s, n);
@@ -134,6 +143,8 @@ int main(int argc, char **argv)
         die = 1;
     } else if (strcmp(mode, "--stubborn") == 0) {
         (void)signal(SIGTERM, SIG_IGN);
+    } else if (strcmp(mode, "--lossy-start") == 0) {
+        lossy = 5u;
     } else if (strcmp(mode, "--silent") != 0 && strcmp(mode, "--good") != 0 &&
                strcmp(mode, "--hang-after") != 0) {
         fprintf(stderr, "fw_fake: unknown mode %s\n", mode);
