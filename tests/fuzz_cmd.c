@@ -43,6 +43,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
         abort();                                   \
     } while (0)
 
+/* The text of each code, from cp_status.def: the harness's own table (the firmware
+ * packs the texts into one string), so checking an error line does not run the
+ * firmware's instrumented cp_status_text - 2 % of fuzz_cmd - and its table is
+ * checked too. */
+static const char *const status_text[CP_ST_END_] = {
+#define CP_STATUS(name, code, text) [code] = text,
+#include "cp_status.def"
+#undef CP_STATUS
+};
+
 static struct hal_mem mem;
 static struct hal_uart uart;
 static struct proto eng;
@@ -60,22 +70,48 @@ static size_t in_base;         /* bytes of in[] dropped by in_reset (progress co
 
 /* independent iterator of the current run's job, whatever its SURFACE (path.h): a
  * job snapshot is the raster, the other models' geometry and the kind. The iterator
- * may keep pointers into ref_snap (the DRC and GSR paths do), so ref_snap is only
- * rewritten together with a new path_init. */
+ * may keep pointers into the snapshot it was initialised on (the DRC and GSR paths
+ * do), so that snapshot stays put while the iterator is in use. */
 struct snap {
     struct toolpath_cfg cfg;
     union path_geom geom;
     uint8_t kind;
 };
 static struct path ref;
-static struct snap ref_snap, snap_cfg, pre_cfg;
-/* pre_cfg of the last PRE_HIST polls, newest at pre_hist[pre_n % PRE_HIST]: a header
- * staged in the engine's TX buffer may reach the HAL a poll or more after the poll
- * that started (and ended) its run, when later job lines have changed the job. */
+static struct snap snap_cfg;
+/* Initialised reference iterators, kept across inputs (speed, docs/HARDENING.md):
+ * path_init of a model job (the DRC solve above all) cost as much as the firmware's
+ * own RUN - 12 % of fuzz_cmd - and libFuzzer's mutants mostly keep the job of their
+ * parent. Each entry holds a job snapshot and the iterator exactly as path_init on
+ * it left it (pointers into e->snap only, path.h); taking an entry copies that
+ * iterator to `ref`, which is the state a new path_init on the same job reaches
+ * (path_init depends on its arguments only, the firmware has no other state). Within
+ * an input nothing changes: the iterator is still set up again, from the copy,
+ * whenever the job differs from the current one. Least recently used entry goes. */
+#define REF_CACHE 64u
+static struct ref_entry {
+    struct snap snap;
+    struct path init;
+    uint32_t hash;   /* of snap: a lookup compares whole snapshots only on a match */
+    unsigned long used; /* 0: empty */
+    int ok;          /* path_init returned CP_OK */
+} ref_cache[REF_CACHE];
+static struct ref_entry *ref_cur; /* entry `ref` was taken from; NULL at input start */
+static unsigned long ref_clock;
+/* The job before each of the last PRE_HIST polls: a header staged in the engine's TX
+ * buffer may reach the HAL a poll or more after the poll that started (and ended) its
+ * run, when later job lines have changed the job. The job changes on few polls, so
+ * it is copied only then, as version pre_ver into pre_snap[pre_ver % PRE_HIST]; the
+ * poll ring pre_hist holds version numbers, newest at pre_hist[(pre_n - 1) %
+ * PRE_HIST]. A version at most one higher per poll: the versions of the last PRE_HIST
+ * polls span at most PRE_HIST, so none of them is overwritten. (Copying the job
+ * twice on every poll was ~7 % of fuzz_cmd, mostly in the sanitizer's memcpy.) */
 #define PRE_HIST 8u
-static struct snap pre_hist[PRE_HIST];
-static unsigned pre_n;
-static int ref_ok, have_snap;
+static struct snap pre_snap[PRE_HIST];
+static unsigned pre_hist[PRE_HIST];
+static unsigned pre_n, pre_ver;
+#define PRE_CFG (&pre_snap[pre_ver % PRE_HIST]) /* the job before the current poll */
+static int have_snap;
 static int poll_active; /* the engine was running after the current poll */
 static uint32_t gk;            /* next point index expected in a G-code run (no checksum) */
 static uint32_t hfirst;         /* first point of the run whose header was seen last (checksum mode) */
@@ -130,7 +166,7 @@ static int32_t q(cp_real v, cp_real scale)
 
 static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
 {
-    if (!ref_ok) {
+    if (ref_cur == NULL || !ref_cur->ok) {
         return 0;
     }
     if (path_pos(&ref) != k && path_seek(&ref, k) != CP_OK) {
@@ -139,7 +175,7 @@ static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
     return path_next(&ref, pt) == CP_OK;
 }
 
-/* The engine's job now, padding zeroed (snapshots are compared with memcmp). */
+/* The engine's job now, padding zeroed (snapshots are compared byte by byte). */
 static void snap_of(struct snap *s)
 {
     memset(s, 0, sizeof *s);
@@ -148,13 +184,83 @@ static void snap_of(struct snap *s)
     s->kind = eng.job.kind;
 }
 
+/* n bytes at a and b equal, 8 at a time. Not memcmp: it runs before every poll, the
+ * sanitizer's interceptor is slow for this, and it hands every unequal pair to
+ * libFuzzer as a comparison hint, while job snapshots are no input bytes. */
+static int same_bytes(const void *a, const void *b, size_t n)
+{
+    const uint8_t *x = a, *y = b;
+    uint64_t u, v;
+    size_t i;
+    for (i = 0; i + 8u <= n; i += 8u) {
+        memcpy(&u, x + i, 8u);
+        memcpy(&v, y + i, 8u);
+        if (u != v) {
+            return 0;
+        }
+    }
+    for (; i < n; i++) {
+        if (x[i] != y[i]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Snapshots a and b are equal (padding is zeroed by snap_of). */
+static int snap_eq(const struct snap *a, const struct snap *b)
+{
+    return same_bytes(a, b, sizeof *a);
+}
+
+/* snap_of would give s now. */
+static int job_is(const struct snap *s)
+{
+    return s->kind == eng.job.kind && same_bytes(&s->cfg, &eng.job.cfg, sizeof s->cfg) &&
+           same_bytes(&s->geom, &eng.job.geom, sizeof s->geom);
+}
+
+/* FNV-1a of a snapshot: the cache key. */
+static uint32_t snap_hash(const struct snap *c)
+{
+    const uint8_t *b = (const uint8_t *)c;
+    uint32_t h = 2166136261u; /* FNV-1a */
+    size_t i;
+    for (i = 0; i < sizeof *c; i++) {
+        h = (h ^ b[i]) * 16777619u;
+    }
+    return h;
+}
+
+/* Point `ref` at job c (a fresh iterator at point 0) unless it is on c already. */
 static int ref_try(const struct snap *c)
 {
-    if (!ref_ok || memcmp(&ref_snap, c, sizeof ref_snap) != 0) {
-        ref_snap = *c;
-        ref_ok = path_init(&ref, ref_snap.kind, &ref_snap.cfg, &ref_snap.geom) == CP_OK;
+    struct ref_entry *e = NULL;
+    uint32_t h;
+    unsigned i;
+    if (ref_cur != NULL && snap_eq(&ref_cur->snap, c)) {
+        return ref_cur->ok;
     }
-    return ref_ok;
+    h = snap_hash(c);
+    for (i = 0; i < REF_CACHE; i++) {
+        struct ref_entry *x = &ref_cache[i];
+        if (x->used != 0 && x->hash == h && snap_eq(&x->snap, c)) {
+            e = x;
+            break;
+        }
+        if (e == NULL || x->used < e->used) {
+            e = x; /* the least recently used so far, if c is not found */
+        }
+    }
+    if (i == REF_CACHE) {
+        e->snap = *c;
+        e->hash = h;
+        e->ok = path_init(&e->init, e->snap.kind, &e->snap.cfg, &e->snap.geom) == CP_OK;
+    }
+    e->used = ++ref_clock;
+    ref = e->init;
+    ref_cur = e;
+    return e->ok;
 }
 
 /* A stream header (text "[RUN:points=count" or a BEGIN frame) arrived: point the
@@ -178,14 +284,15 @@ static void ref_start(uint32_t count)
     }
     snap_of(&now);
     if ((have_snap && ref_try(&snap_cfg) && path_count(&ref) == count) ||
-        (ref_try(&pre_cfg) && path_count(&ref) == count) ||
+        (ref_try(PRE_CFG) && path_count(&ref) == count) ||
         (ref_try(&now) && path_count(&ref) == count)) {
         return;
     }
     {
         unsigned i;
         for (i = 1; i < PRE_HIST && i < pre_n; i++) {
-            if (ref_try(&pre_hist[(pre_n - i) % PRE_HIST]) && path_count(&ref) == count) {
+            if (ref_try(&pre_snap[pre_hist[(pre_n - i) % PRE_HIST] % PRE_HIST]) &&
+                path_count(&ref) == count) {
                 return;
             }
         }
@@ -254,9 +361,8 @@ static void text_line(char *l)
     if (strncmp(l, "error:", 6) == 0) {
         char *end;
         long code = strtol(l + 6, &end, 10);
-        const char *txt = cp_status_text((int)code);
         if (end == l + 6 || code < 1 || code >= CP_ST_END_ || *end != ' ' ||
-            strcmp(end + 1, txt) != 0) {
+            strcmp(end + 1, status_text[code]) != 0) {
             FAIL("bad error line \"%s\"", l);
         }
         saw_ok = 1;
@@ -424,8 +530,11 @@ static int poll_once(void)
 {
     size_t in0 = in_read(), out0 = mem.out_len;
     int r;
-    snap_of(&pre_cfg);
-    pre_hist[pre_n % PRE_HIST] = pre_cfg;
+    if (pre_n == 0 || !job_is(PRE_CFG)) {
+        pre_ver++;
+        snap_of(PRE_CFG);
+    }
+    pre_hist[pre_n % PRE_HIST] = pre_ver;
     pre_n++;
     r = proto_poll(&eng);
     if (trace < 0) {
@@ -440,7 +549,9 @@ static int poll_once(void)
     }
     poll_active = eng.state != PROTO_IDLE;
     if (poll_active) {
-        snap_of(&snap_cfg);
+        if (!have_snap || !job_is(&snap_cfg)) {
+            snap_of(&snap_cfg);
+        }
         snap_checksum = eng.job.checksum;
         have_snap = 1;
     }
@@ -546,7 +657,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     scan = tlen = npending = in_base = 0;
     tline_bin = 0;
     frame_rx_init(&frx);
-    ref_ok = have_snap = poll_active = 0;
+    ref_cur = NULL;
+    have_snap = poll_active = 0;
     pre_n = 0;
     gk = 0;
     hfirst = 0;
