@@ -8,6 +8,7 @@
  * pointer to its first member, C99 6.7.2.1).
  */
 #include "channel.h"
+#include "cp_math.h"
 
 /* The five laws along the guide (natural cubic splines, B13). */
 enum { Q_S = 0, Q_N = 1, Q_JI = 2, Q_JII = 3, Q_J12 = 4, NQ = 5 };
@@ -109,41 +110,34 @@ cp_real channel_kj(cp_real n)
 }
 
 /* ---------------------------------------------------------------------------------------
- * Small helpers. x finite: x - x is 0, and NaN for an infinity or a NaN (one comparison,
- * the same answer as cp_isfinite). */
+ * Small helpers. fin, dot, cross, sub and norm forward to the shared ones of cp_math.h
+ * (one copy in the image; the same operations in the same order). */
 static int fin(cp_real x)
 {
-    return x - x == CP_R(0.0);
+    return cp_finite(x);
 }
 
 /* Vectors (3 reals). */
 static cp_real dot(const cp_real *a, const cp_real *b)
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return cp_v3_dot(a, b);
 }
 
-/* o = a x b (o must not alias a or b). */
+/* o = a x b. */
 static void cross(const cp_real *a, const cp_real *b, cp_real *o)
 {
-    unsigned k;
-    for (k = 0; k < 3u; k++) {
-        unsigned i = k == 2u ? 0u : k + 1u, j = k == 0u ? 2u : k - 1u;
-        o[k] = a[i] * b[j] - a[j] * b[i];
-    }
+    cp_v3_cross(a, b, o);
 }
 
 /* o = a - b. */
-static CP_NOINLINE void sub(const cp_real *a, const cp_real *b, cp_real *o)
+static void sub(const cp_real *a, const cp_real *b, cp_real *o)
 {
-    unsigned k;
-    for (k = 0; k < 3u; k++) {
-        o[k] = a[k] - b[k];
-    }
+    cp_v3_sub(a, b, o);
 }
 
 static cp_real norm(const cp_real *a)
 {
-    return cp_sqrt(dot(a, a));
+    return cp_v3_norm(a);
 }
 
 /* v /= |v|; returns |v|. */

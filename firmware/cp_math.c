@@ -3,6 +3,15 @@
  */
 #include "cp_math.h"
 
+/* The external definitions of the inline 3-vector helpers (C99 6.7.4: one copy for
+ * the calls that are not inlined). */
+extern cp_real cp_v3_dot(const cp_real *a, const cp_real *b);
+extern cp_real cp_v3_norm(const cp_real *a);
+extern void cp_v3_sub(const cp_real *a, const cp_real *b, cp_real *o);
+extern void cp_v3_cross(const cp_real *a, const cp_real *b, cp_real *o);
+extern void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const cp_real *b);
+extern int cp_finite(cp_real x);
+
 #if CP_REAL_DOUBLE
 
 void cp_sincos(cp_real x, cp_real *s, cp_real *c)
@@ -51,7 +60,7 @@ cp_real cp_floorf(cp_real x)
 
 void cp_sincos(cp_real x, cp_real *s, cp_real *c)
 {
-    if (!(x >= -CP_SINCOS_XMAX && x <= CP_SINCOS_XMAX)) {
+    if (!(cp_fabs(x) <= CP_SINCOS_XMAX)) { /* |x| > XMAX or NaN */
         if (x != x) {
             *s = x;
             *c = x;
@@ -59,11 +68,26 @@ void cp_sincos(cp_real x, cp_real *s, cp_real *c)
         }
         x = x > 0.0f ? CP_SINCOS_XMAX : -CP_SINCOS_XMAX;
     }
-    cp_sincos_kernel(x, s, c);
+    {
+        struct cp_sincos_st st;
+        cp_sincos_stage1(x, &st);
+        cp_sincos_stage2(&st, s, c);
+    }
 }
 
-/* atan on |z| <= tan(pi/8) = 0.41421: odd Taylor series to z^15; truncation
- * z^17/17 < 1.8e-8. Larger |z| <= 1 use atan z = pi/4 + atan((z - 1)/(z + 1)). */
+CP_NOINLINE void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st)
+{
+    cp_sincos_in1(x, st);
+}
+
+CP_NOINLINE void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s, cp_real *c)
+{
+    cp_sincos_in2(st, s, c);
+}
+
+/* atan z for z in [0, 1] (cp_atan2's only argument: a quotient of absolute values, or
+ * NaN). On z <= tan(pi/8) = 0.41421: odd Taylor series to z^15; truncation
+ * z^17/17 < 1.8e-8. Larger z use atan z = pi/4 + atan((z - 1)/(z + 1)). */
 static float atan_unit(float z)
 {
     const float tan_pi_8 = 0.414213562f;
@@ -71,9 +95,6 @@ static float atan_unit(float z)
     if (z > tan_pi_8) {
         off = 0.785398163f;
         z = (z - 1.0f) / (z + 1.0f);
-    } else if (z < -tan_pi_8) {
-        off = -0.785398163f;
-        z = (z + 1.0f) / (1.0f - z);
     }
     z2 = z * z;
     return off +

@@ -53,7 +53,8 @@ static inline void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
     *c = cos(x);
 }
 #else
-/* The float kernel of cp_sincos, inlined into the per-point jet (canal_jet). */
+/* The float kernel of cp_sincos in two always-inline halves (cp_sincos_in1, cp_sincos_in2);
+ * cp_sincos_kernel, the two inlined together, serves the per-point jet (canal_jet). */
 /* Error analysis (float).
  * Reduction: k = nearest integer to x 2/pi; r = ((x - k P1) - k P2) - k P3 with
  * P1 + P2 + P3 = pi/2 to ~2^-72; P1 and P2 have 12 and 12 significant bits... here
@@ -64,7 +65,7 @@ static inline void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
  * cos to r^10 (truncation r^12/12! < 1.2e-10), Horner in float: a few ulp of 1. */
 /* Precondition of the kernel and its stages: |x| <= CP_SINCOS_XMAX (cp_sincos clamps;
  * the jet's argument is bounded by canal_init's CANAL_COORD_MAX = 1e4). */
-static CP_ALWAYS_INLINE void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st)
+static CP_ALWAYS_INLINE void cp_sincos_in1(cp_real x, struct cp_sincos_st *st)
 {
     const float two_over_pi = 0.636619772f;
     const float p1 = 1.5703125f;
@@ -88,40 +89,39 @@ static CP_ALWAYS_INLINE void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st
     st->k = k;
 }
 
-static CP_ALWAYS_INLINE void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s,
-                                              cp_real *c)
+static CP_ALWAYS_INLINE void cp_sincos_in2(const struct cp_sincos_st *st, cp_real *s, cp_real *c)
 {
     float r2 = st->a, sr = st->b;
     float cr = 1.0f +
                r2 * (-0.5f + r2 * (4.16666667e-2f +
                                    r2 * (-1.38888889e-3f +
                                          r2 * (2.48015873e-5f + r2 * -2.75573192e-7f))));
-    switch ((uint32_t)st->k & 3u) {
-    case 0u:
-        *s = sr;
-        *c = cr;
-        break;
-    case 1u:
-        *s = cr;
-        *c = -sr;
-        break;
-    case 2u:
-        *s = -sr;
-        *c = -cr;
-        break;
-    default:
-        *s = -cr;
-        *c = sr;
-        break;
+    /* quarter k: (sin, cos) = (sr, cr), (cr, -sr), (-sr, -cr), (-cr, sr) for k & 3 = 0..3:
+     * an odd k swaps and negates the new cos, k & 2 negates both (negation is exact) */
+    if ((uint32_t)st->k & 1u) {
+        float t = sr;
+        sr = cr;
+        cr = -t;
     }
+    if ((uint32_t)st->k & 2u) {
+        sr = -sr;
+        cr = -cr;
+    }
+    *s = sr;
+    *c = cr;
 }
 
 static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
 {
     struct cp_sincos_st st;
-    cp_sincos_stage1(x, &st);
-    cp_sincos_stage2(&st, s, c);
+    cp_sincos_in1(x, &st);
+    cp_sincos_in2(&st, s, c);
 }
+
+/* The stages out of line (cp_math.c: one copy of each, which cp_sincos calls too); only
+ * the per-point jet inlines the kernel. */
+void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st);
+void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s, cp_real *c);
 
 #endif
 
@@ -144,5 +144,62 @@ cp_real cp_expm1(cp_real x);
  * validate first: the firmware never feeds it a non-positive number). Double build:
  * libm log. */
 cp_real cp_log(cp_real x);
+
+/* 3-vectors, shared by the surface models (gsr, channel, drc). A vector is 3 consecutive
+ * cp_real: a cp_real[3], or a struct cp_vec3 passed as (const cp_real *)&v (a pointer to a
+ * structure converted to a pointer to its first member, C99 6.7.2.1; the layout is
+ * asserted below). Every result is the plain expression in the order written
+ * (-ffp-contract=off), so a caller's bits do not depend on whether it uses these or its
+ * own copy. Written out per component (a speed build does not unroll a 3-step loop).
+ * C99 inline definitions: a caller may inline them (a speed build does, as it
+ * did the modules' own copies) or call the one external definition in cp_math.c (the
+ * size-optimised image does: one copy instead of one per module). */
+CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), cp_v3_is_3_reals);
+
+/* a0 b0 + a1 b1 + a2 b2, summed left to right. */
+inline cp_real cp_v3_dot(const cp_real *a, const cp_real *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* sqrt(cp_v3_dot(a, a)). */
+inline cp_real cp_v3_norm(const cp_real *a)
+{
+    return cp_sqrt(cp_v3_dot(a, a));
+}
+
+/* o = a - b (o may alias a or b). */
+inline void cp_v3_sub(const cp_real *a, const cp_real *b, cp_real *o)
+{
+    o[0] = a[0] - b[0];
+    o[1] = a[1] - b[1];
+    o[2] = a[2] - b[2];
+}
+
+/* o = a x b: o0 = a1 b2 - a2 b1, o1 = a2 b0 - a0 b2, o2 = a0 b1 - a1 b0 (o may alias a
+ * or b: the result is formed before it is stored). */
+inline void cp_v3_cross(const cp_real *a, const cp_real *b, cp_real *o)
+{
+    cp_real x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2];
+    o[2] = a[0] * b[1] - a[1] * b[0];
+    o[0] = x;
+    o[1] = y;
+}
+
+/* o = p a + q b, each component p a_k + q b_k (o may alias a or b; p = 1 or q = 0 are
+ * exact, q = 0 still adds the product 0 b_k). */
+inline void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const cp_real *b)
+{
+    o[0] = p * a[0] + q * b[0];
+    o[1] = p * a[1] + q * b[1];
+    o[2] = p * a[2] + q * b[2];
+}
+
+/* 1 if x is finite: x - x is 0, and NaN for an infinity or a NaN (cp_isfinite's
+ * answer in one comparison). */
+inline int cp_finite(cp_real x)
+{
+    return x - x == CP_R(0.0);
+}
 
 #endif /* CP_MATH_H */

@@ -22,39 +22,36 @@
 #define ZERO CP_R(0.0)
 #define DRC_K_INF CP_R(1.0e30) /* "unbounded" curvature of the one-zero-angle limit */
 
-/* ---- vectors ---- */
+/* ---- vectors: forwarded to the shared helpers of cp_math.h (one copy in the image; the
+ * same operations in the same order; a struct cp_vec3 read as 3 reals) ---- */
+#define CV3(v) ((const cp_real *)(v))
+
 static cp_real dot3(const struct cp_vec3 *a, const struct cp_vec3 *b)
 {
-    return a->x * b->x + a->y * b->y + a->z * b->z;
+    return cp_v3_dot(CV3(a), CV3(b));
 }
 
 static void sub3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
-    o->x = a->x - b->x;
-    o->y = a->y - b->y;
-    o->z = a->z - b->z;
+    cp_v3_sub(CV3(a), CV3(b), (cp_real *)o);
 }
 
+/* o = a x b (o may alias a or b) */
 static void cross3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
-    cp_real x = a->y * b->z - a->z * b->y, y = a->z * b->x - a->x * b->z;
-    o->z = a->x * b->y - a->y * b->x;
-    o->x = x;
-    o->y = y;
+    cp_v3_cross(CV3(a), CV3(b), (cp_real *)o);
 }
 
 /* o = sa a + sb b */
 static void comb3(cp_real sa, const struct cp_vec3 *a, cp_real sb, const struct cp_vec3 *b,
                   struct cp_vec3 *o)
 {
-    o->x = sa * a->x + sb * b->x;
-    o->y = sa * a->y + sb * b->y;
-    o->z = sa * a->z + sb * b->z;
+    cp_v3_comb((cp_real *)o, sa, CV3(a), sb, CV3(b));
 }
 
 static cp_real norm3(const struct cp_vec3 *a)
 {
-    return cp_sqrt(dot3(a, a));
+    return cp_v3_norm(CV3(a));
 }
 
 /* ---- the exponential segment model ---- */
@@ -202,12 +199,12 @@ struct drc_scratch {
 
 /* Angles of segment i from the tangent parameters: a = t_i phi_i (a0 at i = 0),
  * b = (1 - t_{i+1}) phi_{i+1} (b1 at the last segment). */
-static cp_real seg_a(const struct drc_scratch *w, uint32_t i)
+static CP_NOINLINE cp_real seg_a(const struct drc_scratch *w, uint32_t i)
 {
     return i == 0u ? w->a0 : w->tp[i] * w->phi[i];
 }
 
-static cp_real seg_b(const struct drc_scratch *w, uint32_t i, uint32_t n)
+static CP_NOINLINE cp_real seg_b(const struct drc_scratch *w, uint32_t i, uint32_t n)
 {
     return i + 2u == n ? w->b1 : (ONE - w->tp[i + 1u]) * w->phi[i + 1u];
 }
@@ -504,11 +501,33 @@ static CP_NOINLINE void tilt_3d(const struct cp_vec3 *p, unsigned ps, uint32_t n
     }
 }
 
+/* The 3D tangents from the solved angles: chord c(i) rotated about the normal n_i (in t)
+ * by -angle, tilted by chi_i (tilt_3d). Out of line: chi and the vectors stay off
+ * drc_tangents' frame (analyse and solve are inlined there). */
+static CP_NOINLINE void orient_3d(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
+                                  unsigned ts, uint32_t n, const struct drc_scratch *w)
+{
+    cp_real chi[CP_MAX_DRC_POINTS];
+    uint32_t i;
+    tilt_3d(p, ps, n, w, chi);
+    for (i = 0; i < n; i++) {
+        uint32_t c = i + 1u < n ? i : n - 2u;
+        struct cp_vec3 d, nd, nrm = t[i * ts];
+        cp_real sn, cs;
+        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
+        comb3(ONE / norm3(&d), &d, ZERO, &d, &d);
+        cross3(&nrm, &d, &nd);
+        cp_sincos(-tan_angle(w, i, n), &sn, &cs);
+        comb3(cs, &d, sn, &nd, &t[i * ts]);
+        cp_sincos(chi[i], &sn, &cs);
+        comb3(cs, &t[i * ts], sn, &nrm, &t[i * ts]);
+    }
+}
+
 int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsigned ts,
                  uint32_t n)
 {
     struct drc_scratch w;
-    cp_real chi[CP_MAX_DRC_POINTS];
     uint32_t i;
     int err = analyse(p, ps, n, 0, &w);
     if (err != CP_OK) {
@@ -524,20 +543,7 @@ int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsign
         return err;
     }
     solve(p, ps, n, &w);
-    tilt_3d(p, ps, n, &w, chi);
-    /* chord c(i) rotated about the normal n_i (in t) by -angle, tilted by chi_i */
-    for (i = 0; i < n; i++) {
-        uint32_t c = i + 1u < n ? i : n - 2u;
-        struct cp_vec3 d, nd, nrm = t[i * ts];
-        cp_real sn, cs;
-        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
-        comb3(ONE / norm3(&d), &d, ZERO, &d, &d);
-        cross3(&nrm, &d, &nd);
-        cp_sincos(-tan_angle(&w, i, n), &sn, &cs);
-        comb3(cs, &d, sn, &nd, &t[i * ts]);
-        cp_sincos(chi[i], &sn, &cs);
-        comb3(cs, &t[i * ts], sn, &nrm, &t[i * ts]);
-    }
+    orient_3d(p, ps, t, ts, n, &w);
     return CP_OK;
 }
 

@@ -48,46 +48,50 @@
 #define TAN_PI_8 CP_R(0.41421356237309504880)
 #define SAG_MARGIN CP_R(0.9)
 
-/* gsr_init reads cfg->ref as 3 consecutive reals (&ref.x) */
+/* gsr_init reads cfg->ref as 3 consecutive reals (&ref.x), the vector helpers any
+ * struct cp_vec3 */
 CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
 
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
 
+/* The vector helpers below forward to the shared ones of cp_math.h (one copy in the
+ * image; the same operations in the same order). A struct cp_vec3 is read as 3 reals
+ * (the assert above). */
+#define V3(v) ((cp_real *)(v))
+#define CV3(v) ((const cp_real *)(v))
+
 static cp_real dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
 {
-    return a->x * b->x + a->y * b->y + a->z * b->z;
+    return cp_v3_dot(CV3(a), CV3(b));
 }
 
-static CP_NOINLINE void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
+/* o = a x b (o may alias a or b) */
+static void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
-    struct cp_vec3 r;
-    r.x = a->y * b->z - a->z * b->y;
-    r.y = a->z * b->x - a->x * b->z;
-    r.z = a->x * b->y - a->y * b->x;
-    *o = r;
+    cp_v3_cross(CV3(a), CV3(b), V3(o));
 }
 
 /* o = p a + q b (o may alias a or b; p = 1 or q = 0 are exact) */
 static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
                  const struct cp_vec3 *b)
 {
-    o->x = p * a->x + q * b->x;
-    o->y = p * a->y + q * b->y;
-    o->z = p * a->z + q * b->z;
+    cp_v3_comb(V3(o), p, CV3(a), q, CV3(b));
 }
 
-/* cp_isfinite out of line: one copy for the checks of init, sections and points. */
+/* cp_finite out of line: one copy for the checks of init, sections and points. */
 static CP_NOINLINE int fin(cp_real x)
 {
-    return cp_isfinite(x);
+    return cp_finite(x);
 }
 
-/* Normalize v; returns its former length. */
+/* Normalize v (each component times 1/|v|); returns its former length. */
 static cp_real unit(struct cp_vec3 *v)
 {
-    cp_real l = cp_sqrt(dot(v, v));
-    comb(v, CP_R(1.0) / l, v, CP_R(0.0), v);
+    cp_real l = cp_v3_norm(CV3(v)), f = CP_R(1.0) / l;
+    v->x *= f;
+    v->y *= f;
+    v->z *= f;
     return l;
 }
 
