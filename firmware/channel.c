@@ -9,6 +9,7 @@
  */
 #include "channel.h"
 #include "cp_math.h"
+#include "raster.h"
 
 /* The five laws along the guide (natural cubic splines, B13). */
 enum { Q_S = 0, Q_N = 1, Q_JI = 2, Q_JII = 3, Q_J12 = 4, NQ = 5 };
@@ -651,6 +652,7 @@ int channel_wire_inertia(const struct channel_section *s, uint32_t m, cp_real *l
     return CP_OK;
 }
 
+
 /* ---------------------------------------------------------------------------------------
  * Iterator. Coordinate 0 is u in [lo, hi] = [0, N-1], 1 is w in [u0, u1]. Point k of the
  * raster (steps, link): block j = k / (steps + 1 + link) holds line/ring j (steps + 1
@@ -671,22 +673,19 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
 {
     cp_real x[2], g, g2 = CP_R(0.0), *p = VR(&pt->p);
     const cp_real *n = CVR(&pt->n), *sv = CVR(s);
-    uint32_t st = cp->steps, den = st, j = k / (st + 1u + cp->link), i = k % (st + 1u + cp->link);
-    uint32_t nm = (uint32_t)cp->n - 1u, a = 0u;
+    struct raster_at ra;
+    uint32_t den = cp->steps;
     unsigned al = cp->mode, ac = al ^ 1u, c; /* TOOLPATH_LINES = 0: along u */
-    pt->line = (int16_t)j;
-    if (i > st) { /* a link */
-        i -= st;
+    raster_locate(k, cp->steps, cp->link, &ra);
+    if (ra.a != 0u) { /* a link: where line/ring j ends, the exact end of the range */
         den = (uint32_t)cp->link + 1u;
-        a = i;
-        x[al] = (j & 1u) ? cp->lo[al] : cp->hi[al]; /* where line/ring j ends */
-        pt->line = -1;
+        x[al] = (ra.j & 1u) ? cp->lo[al] : cp->hi[al];
     } else {
-        i = (j & 1u) ? st - i : i; /* zigzag */
-        x[al] = frac(cp, al, i, den);
+        x[al] = frac(cp, al, ra.i, den);
     }
-    x[ac] = frac(cp, ac, j * den + a, nm * den);
-    pt->index = (uint16_t)i;
+    x[ac] = frac(cp, ac, ra.j * den + ra.a, ((uint32_t)cp->n - 1u) * den);
+    pt->line = (int16_t)ra.line;
+    pt->index = (uint16_t)ra.index;
     pt->t = x[0];
     if (cp->row.u != x[0]) {
         channel_row(&cp->ch, x[0], &cp->row);
@@ -715,11 +714,11 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
 
 /* Set steps and link (<= 2 CP_MAX_LINK + 1); returns the points of the raster,
  * n (steps + 1) + (n - 1) link. */
-static CP_NOINLINE uint32_t raster(struct channel_path *cp, uint32_t steps, uint32_t link)
+static CP_NOINLINE uint32_t set_raster(struct channel_path *cp, uint32_t steps, uint32_t link)
 {
     cp->steps = steps;
     cp->link = (uint16_t)link;
-    return (uint32_t)cp->n * (steps + 1u) + ((uint32_t)cp->n - 1u) * link;
+    return raster_count(cp->n, steps, link);
 }
 
 /* Walk the whole raster with seg[0] segments per line/ring and seg[1] per link, doubled
@@ -737,7 +736,7 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
     const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
     uint32_t k, cnt;
     unsigned c, kind = 0u;
-    cnt = raster(cp, 2u * seg[0], 2u * seg[1] - 1u); /* steps up to 2 CP_MAX_STEPS: uint32_t */
+    cnt = set_raster(cp, 2u * seg[0], 2u * seg[1] - 1u); /* steps up to 2 CP_MAX_STEPS: uint32_t */
     sag[0] = sag[1] = CP_R(0.0);
     for (k = 0; k < cnt; k++) {
         unsigned prev = kind;
@@ -776,39 +775,28 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
     return CP_OK;
 }
 
+/* The tolerance search (raster_fit): a pilot walk at 32 steps / 1 link segment, the estimate
+ * from it aimed at SAG_MARGIN tol (up or down, at least 8 / 1), then verified with the
+ * sagitta <= tol, each correction at least 1/8 larger, an estimate above the maximum
+ * CP_ERR_TOL at once. */
+static const struct raster_rule channel_rule = {SAG_MARGIN, CP_R(1.0), 32u, 1u, 3u, 0u};
+
 int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
                       const struct toolpath_cfg *rs)
 {
-    uint32_t seg[2], fix[2], it;
-    cp_real sag[2], tol[2];
-    unsigned q;
+    struct raster_fit fit;
+    uint32_t seg[2], round;
+    cp_real sag[2];
     int err;
     cp->count = 0u;
     cp->k = 0u;
-    if (rs == NULL || rs->mode > TOOLPATH_CIRCLES || rs->output > TOOLPATH_OUT_TIP ||
-        (rs->output == TOOLPATH_OUT_SURFACE && rs->tool_r != CP_R(0.0))) {
-        return CP_ERR_INVAL;
+    err = raster_check(rs, CP_PI);
+    if (err == CP_OK && rs->tool_r > CHANNEL_COORD_MAX) {
+        err = CP_ERR_TOOL;
     }
-    /* x * 0 is NaN exactly when x is not finite, else +-0 (no overflow of a sum): the sum
-     * is 0 exactly when all four are finite */
-    if (!(rs->u0 * CP_R(0.0) + rs->u1 * CP_R(0.0) + rs->tol * CP_R(0.0) + rs->tool_r * CP_R(0.0) ==
-          CP_R(0.0))) {
-        return CP_ERR_NONFINITE;
+    if (err == CP_OK) {
+        err = channel_init(&cp->ch, g);
     }
-    if (rs->n == 0u || cp_fabs(rs->u0) > CP_PI || cp_fabs(rs->u1) > CP_PI ||
-        (rs->u0 == rs->u1 && rs->n > 1u) ||
-        (rs->tol != CP_R(0.0) && (rs->tol < CP_R(1e-5) || rs->tol > CP_R(10.0))) ||
-        (rs->tol == CP_R(0.0) && rs->steps == 0u) ||
-        (rs->link != TOOLPATH_LINK_AUTO && rs->link > CP_MAX_LINK)) {
-        return CP_ERR_RANGE;
-    }
-    if (rs->n > CP_MAX_LINES || rs->steps > CP_MAX_STEPS) {
-        return CP_ERR_TOO_MANY;
-    }
-    if (rs->tool_r < CP_R(0.0) || rs->tool_r > CHANNEL_COORD_MAX) {
-        return CP_ERR_TOOL;
-    }
-    err = channel_init(&cp->ch, g);
     if (err != CP_OK) {
         return err;
     }
@@ -833,48 +821,21 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     cp->n = rs->n;
     cp->lo[1] = rs->u0;
     cp->hi[1] = rs->u1;
-    /* segments per line (q = 0) and per link (q = 1): given (fix > 0), else for the
-     * tolerance: a pilot walk (32, 1), the estimate from the h^2 law of the sagitta (rounded
-     * up, aimed at SAG_MARGIN tol), then verified; up to four corrections, each at least 1/8
-     * larger. Lines 8..CP_MAX_STEPS, links 1..CP_MAX_LINK + 1 (tolerance 1 um when tol = 0). */
-    fix[0] = rs->steps;
-    fix[1] = rs->n == 1u ? 1u : (rs->link != TOOLPATH_LINK_AUTO ? rs->link + 1u : 0u);
-    tol[0] = rs->tol;
-    tol[1] = rs->tol > CP_R(0.0) ? rs->tol : CP_R(0.001);
-    seg[0] = fix[0] ? fix[0] : 32u;
-    seg[1] = fix[1] ? fix[1] : 1u;
-    for (it = 0; it <= 4u; it++) { /* it == 4 either breaks or returns CP_ERR_TOL */
-        unsigned done = 1u;
-        err = walk(cp, seg, sag);
-        if (err != CP_OK) {
-            return err;
-        }
-        for (q = 0; q < 2u; q++) {
-            uint32_t hi = q ? CP_MAX_LINK + 1u : CP_MAX_STEPS, sg = seg[q], want;
-            cp_real f = (cp_real)sg * cp_sqrt(sag[q] / (SAG_MARGIN * tol[q])) * CP_R(1.05);
-            if (fix[q] || (it > 0u && sag[q] <= tol[q])) {
-                continue;
-            }
-            if (it >= 4u || !(f <= (cp_real)hi)) {
-                return CP_ERR_TOL;
-            }
-            want = (uint32_t)cp_ceil(f);
-            want = want < (q ? 1u : 8u) ? (q ? 1u : 8u) : want;
-            want = it > 0u && want < sg + 1u + sg / 8u ? sg + 1u + sg / 8u : want;
-            if (want > hi) {
-                return CP_ERR_TOL;
-            }
-            seg[q] = want;
-            done = 0u;
-        }
-        if (done) {
-            break;
+    /* segments per line (q = 0) and per link (q = 1): given, else for the tolerance by
+     * channel_rule; lines 8..CP_MAX_STEPS, links 1..CP_MAX_LINK + 1 (tolerance 1 um when
+     * tol = 0). Every try walks the doubled raster. */
+    raster_fit_begin(&fit, rs, &channel_rule);
+    err = RASTER_FIT_MORE;
+    for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
+        err = walk(cp, fit.m, sag);
+        if (err == CP_OK) {
+            err = raster_fit_update(&fit, sag);
         }
     }
-    if (it > 4u) { /* not reached (see the loop header); a guard for the fixed bound */
-        return CP_ERR_TOL;
+    if (err != CP_OK) {
+        return err;
     }
-    cp->count = raster(cp, seg[0], seg[1] - 1u);
+    cp->count = set_raster(cp, fit.m[0], fit.m[1] - 1u);
     return CP_OK;
 }
 
@@ -885,11 +846,7 @@ uint32_t channel_path_count(const struct channel_path *cp)
 
 int channel_path_seek(struct channel_path *cp, uint32_t k)
 {
-    if (k > cp->count) {
-        return CP_ERR_RANGE;
-    }
-    cp->k = k;
-    return CP_OK;
+    return raster_seek(&cp->k, cp->count, k);
 }
 
 int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt)

@@ -212,8 +212,10 @@ struct channel_path {
  * n >= 1), frame (|e_y x tau| > CHANNEL_FRAME_TOL), sweep regularity g = 1 - k.(P - L) > 0,
  * the tool-centre path not folding back against the surface path, finiteness. raster: mode, output, n (1..CP_MAX_LINES), u0, u1
  * (|u| <= pi; u0 == u1 only with n == 1), steps (0 = from tol), link (TOOLPATH_LINK_AUTO =
- * from tol or 1 um), tol, tool_r. Errors: every channel_init code, plus
- *   CP_ERR_INVAL     mode/output out of range, a tool radius with OUT_SURFACE
+ * from tol or 1 um), tol, tool_r. The raster is checked first (raster_check, raster.h:
+ * INVAL, NONFINITE, RANGE, TOO_MANY, TOOL in that order, then tool_r > CHANNEL_COORD_MAX),
+ * then the geometry (channel_init), then the walks. Errors: every channel_init code, plus
+ *   CP_ERR_INVAL     raster NULL, mode/output out of range, a tool radius with OUT_SURFACE
  *   CP_ERR_NONFINITE u0, u1, tol or tool_r      CP_ERR_RANGE  as toolpath_init
  *   CP_ERR_TOO_MANY  n, steps above the maxima
  *   CP_ERR_TOOL      tool_r < 0 or tool_r > CHANNEL_COORD_MAX, or the tool-centre path folds

@@ -15,6 +15,7 @@
  */
 #include "drc.h"
 #include "cp_math.h"
+#include "raster.h"
 
 #define ONE CP_R(1.0)
 #define TWO CP_R(2.0)
@@ -925,6 +926,7 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
 
 /* ---- the streaming iterator (planar) ---- */
 
+
 #define DRC_SAG_MARGIN CP_R(0.9) /* measured sagitta must be <= 0.9 tol (canal: same) */
 #define DRC_CUSP_EPS CP_R(1e-4)  /* D b^2 <= eps (q^2 b^2 + h^2): on or near an edge */
 
@@ -1239,21 +1241,26 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
     it->line = -1;
     it->g = g;
     it->rc = rc;
-    if (g == NULL || rc == NULL || g->edge > 1u || rc->output > TOOLPATH_OUT_TIP) {
+    if (g == NULL || g->edge > 1u) {
         return CP_ERR_INVAL;
+    }
+    /* the raster, checked as for every model (raster_check; in CURVE mode too, although
+     * it uses only tol), then the radius parameters: a non-finite sum is one
+     * CP_ERR_NONFINITE (huge finite values that overflow included) */
+    err = raster_check(rc, CP_PI);
+    if (err != CP_OK) {
+        return err;
     }
     t = rc->tol;
     au = g->passes == DRC_PASSES_AUTO;
     if (!au && g->passes > CP_MAX_PASSES) {
         return CP_ERR_TOO_MANY;
     }
-    /* the raster, checked as toolpath_init does (EDGE only, but tol) */
-    x = t + rc->u0 + rc->u1 + rc->tool_r + rc->surf.rp[0] + rc->surf.rp[1] + rc->surf.rp[2] +
-        rc->surf.rp[3];
+    x = rc->surf.rp[0] + rc->surf.rp[1] + rc->surf.rp[2] + rc->surf.rp[3];
     if (!(x - x == ZERO)) { /* NaN for NaN and Inf */
         return CP_ERR_NONFINITE;
     }
-    if (au && !(t >= CP_R(1e-5) && t <= CP_R(10.0))) {
+    if (au && t == ZERO) { /* AUTO needs the tolerance (raster_check: 0 or in [1e-5, 10]) */
         return CP_ERR_RANGE;
     }
     it->edge = g->edge;
@@ -1271,18 +1278,12 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         }
     }
     if (it->edge) {
+        /* EDGE extras: angle labels, LINES, a canal radius law, and a tool radius exactly
+         * with a tool output (raster_check: none with OUT_SURFACE) */
         if (rc->labels != TOOLPATH_LABEL_ANGLE || rc->mode != TOOLPATH_LINES ||
             rc->surf.radius > CANAL_R_CUBIC ||
-            (rc->output == TOOLPATH_OUT_SURFACE) != (rc->tool_r == ZERO)) {
+            (rc->output != TOOLPATH_OUT_SURFACE && rc->tool_r == ZERO)) {
             return CP_ERR_INVAL;
-        }
-        if (rc->n > CP_MAX_LINES) {
-            return CP_ERR_TOO_MANY;
-        }
-        if (rc->n == 0u || cp_fabs(rc->u0) > CP_PI || cp_fabs(rc->u1) > CP_PI ||
-            (rc->u0 == rc->u1 && rc->n > 1u) || rc->tool_r < ZERO ||
-            (rc->link != TOOLPATH_LINK_AUTO && rc->link > CP_MAX_LINK)) {
-            return CP_ERR_RANGE;
         }
         it->n = rc->n;
         if (rc->surf.radius != CANAL_R_COS) { /* the power basis of R(sigma) */
@@ -1360,7 +1361,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         }
     }
     it->mode = TOOLPATH_LINES;
-    it->count = (uint32_t)it->n * ((uint32_t)it->steps + 1u) + (uint32_t)(it->n - 1u) * it->link;
+    it->count = raster_count(it->n, it->steps, it->link);
     it->line = -1;
     return CP_OK;
 }
@@ -1372,12 +1373,8 @@ uint32_t drc_path_count(const struct drc_path *it)
 
 int drc_path_seek(struct drc_path *it, uint32_t k)
 {
-    if (k > it->count) {
-        return CP_ERR_RANGE;
-    }
-    it->k = k;
     it->line = -1; /* next() re-positions (descent or re-walk of the line) */
-    return CP_OK;
+    return raster_seek(&it->k, it->count, k);
 }
 
 int drc_path_next(struct drc_path *it, struct toolpath_pt *pt)

@@ -59,8 +59,8 @@
  * code; both must outlive the run, as struct job does); one point routine serves init's
  * verification walk, next and seek; link points are uniform in contact-frame angle on
  * the end circle (their count exact for the chord tolerance, no lerp correction); the
- * CONST/LINEAR/CUBIC radius laws are one power-basis cubic; the raster is checked with
- * toolpath_init's codes but a non-finite sum of tol, u0, u1, tool_r and the radius
+ * CONST/LINEAR/CUBIC radius laws are one power-basis cubic; the raster is checked by
+ * raster_check (raster.h, the codes of every model), and a non-finite sum of the radius
  * parameters is one CP_ERR_NONFINITE (huge finite values that overflow included).
  */
 #ifndef DRC_H
@@ -226,17 +226,25 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
  * K = g->passes, or with DRC_PASSES_AUTO the smallest K whose leaf sagitta (measured on
  * the thickened curve, and in EDGE mode on every streamed line) is <= raster->tol.
  * raster fields used: CURVE mode: tol (AUTO only); EDGE mode: n, u0, u1 (ANGLE labels
- * only), link, tol, output, tool_r, surf.radius, surf.rp (the RADIUS law over sigma).
+ * only), link, tol, output, tool_r, surf.radius, surf.rp (the RADIUS law over sigma). Every
+ * raster is checked as for the other models (raster_check, in CURVE mode too), in this
+ * order: g NULL or edge out of range, raster_check (INVAL, NONFINITE, RANGE, TOO_MANY,
+ * TOOL), passes, the radius parameters, the EDGE extras, then the points.
  * EDGE mode needs a RADIUS (job.c job_ready: EDGE ON without RADIUS is an incomplete
  * job, error:10); without LINES the raster default applies: one line at u = 0 (the
  * contact curve C itself, where the fillet meets the plane).
  * Errors: the drc_tangents codes, plus
- *   CP_ERR_INVAL      g NULL, edge/labels/output out of range, tool with OUT_SURFACE
- *   CP_ERR_TOO_MANY   passes > CP_MAX_PASSES, n > CP_MAX_LINES, 2^K (N-1) > CP_MAX_STEPS
- *   CP_ERR_RANGE      |u| > pi, u0 == u1 with n > 1, n == 0, tol out of [1e-5, 10]
+ *   CP_ERR_INVAL      g or raster NULL, edge/mode/output out of range, tool with
+ *                     OUT_SURFACE; EDGE: labels not ANGLE, mode not LINES, a radius law
+ *                     other than CONST/LINEAR/COS/CUBIC, a tool output with tool_r == 0
+ *   CP_ERR_NONFINITE  u0, u1, tol, tool_r or a radius parameter NaN/Inf (or their sum)
+ *   CP_ERR_TOO_MANY   passes > CP_MAX_PASSES, n > CP_MAX_LINES, steps > CP_MAX_STEPS
+ *                     (the raster's, unused), 2^K (N-1) > CP_MAX_STEPS
+ *   CP_ERR_RANGE      |u| > pi, u0 == u1 with n > 1, n == 0, tol != 0 out of [1e-5, 10],
+ *                     tol == 0 with steps == 0 or with AUTO passes, link > CP_MAX_LINK
  *   CP_ERR_OFF_PLANE  a point off z = 0 (the stream is planar: "Footprint")
  *   CP_ERR_RADIUS     EDGE: R <= 0 at a point (or radius parameters out of range)
- *   CP_ERR_TOOL       EDGE: tool_r >= min R
+ *   CP_ERR_TOOL       tool_r < 0; EDGE: tool_r >= min R
  *   CP_ERR_TOL        AUTO: the tolerance needs more than CP_MAX_PASSES passes, or a link
  *                     more than CP_MAX_LINK points
  *   CP_ERR_CUSP       EDGE: a streamed point on or beyond a cuspidal edge (every point,

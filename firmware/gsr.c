@@ -42,6 +42,7 @@
  */
 #include "gsr.h"
 #include "cp_math.h"
+#include "raster.h"
 
 #define SQRT2 CP_R(1.41421356237309504880)
 #define HALF_PI CP_R(1.57079632679489661923)
@@ -546,6 +547,7 @@ cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real th)
 
 /* ---- iterator ---------------------------------------------------------------------- */
 
+
 /* Section parameter of eccentric angle th: th itself (TRIG) or psi (RATIONAL). */
 static CP_NOINLINE cp_real sigma_of(const struct gsr_path *it, cp_real th)
 {
@@ -563,25 +565,21 @@ static cp_real fixed(const struct gsr_path *it, uint32_t j)
 }
 
 /* Where point k is: x[0] = u, x[1] = the section parameter sig; line (-1 on a link) and
- * index. Both modes are one raster: line j has a FIXED coordinate and a RUNNING one (LINES:
- * u = 0..1, CIRCLES: sig = s0..s1) at i / steps; link point kk runs the fixed coordinate
- * from line j's value to line j + 1's at fraction kk / (link + 1), at the running end
- * where line j stopped. */
-static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, int32_t *line,
-                   uint32_t *index)
+ * index (raster_locate). Both modes are one raster: line j has a FIXED coordinate and a
+ * RUNNING one (LINES: u = 0..1, CIRCLES: sig = s0..s1) at i / steps; link point a runs the
+ * fixed coordinate from line j's value to line j + 1's at fraction a / (link + 1), at the
+ * running end where line j stopped. */
+static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct raster_at *at)
 {
-    uint32_t st = it->steps, lk = (uint32_t)it->link + 1u, j = k / (st + lk), r = k % (st + lk);
-    uint32_t back = j & 1u, c = it->mode == TOOLPATH_LINES, i = back ? st - r : r;
-    cp_real a0 = it->s0, a1 = it->s1, f = fixed(it, j);
-    *line = (int32_t)j;
-    if (r > st) { /* link point r - st */
-        *line = -1;
-        i = back ? 0u : st;
-        f += (fixed(it, j + 1u) - f) * ((cp_real)(r - st) / (cp_real)lk);
+    uint32_t c = it->mode == TOOLPATH_LINES;
+    cp_real a0 = it->s0, a1 = it->s1, f;
+    raster_locate(k, it->steps, it->link, at);
+    f = fixed(it, at->j);
+    if (at->a != 0u) { /* link point a */
+        f += (fixed(it, at->j + 1u) - f) * ((cp_real)at->a / (cp_real)(it->link + 1u));
     }
-    *index = r > st ? r - st : i;
     x[c] = f;
-    x[1u - c] = a0 + (a1 - a0) * ((cp_real)i / (cp_real)st);
+    x[1u - c] = a0 + (a1 - a0) * ((cp_real)at->i / (cp_real)it->steps);
 }
 
 /* Emitted point at x = (u, sig) (surface, tool centre G + r n, or tip) and normal, with
@@ -629,16 +627,17 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
 {
     struct toolpath_pt a, b, m;
     cp_real x[2], px[2] = {CP_R(0.0), CP_R(0.0)};
-    int32_t line, pline = -1;
-    uint32_t k, idx;
+    struct raster_at at;
+    int32_t pline = -1;
+    uint32_t k;
     int err = gsr_path_seek(it, 0u);
     sag[0] = sag[1] = CP_R(0.0);
     a.p = zero;
     for (k = 0; k < it->count && err == CP_OK; k++) {
-        locate(it, k, x, &line, &idx);
+        locate(it, k, x, &at);
         err = pt_at(it, x, &b);
         if (err == CP_OK && k > 0u) {
-            unsigned c = (line >= 0 && line == pline) ? 0u : 1u;
+            unsigned c = (at.line >= 0 && at.line == pline) ? 0u : 1u;
             px[0] = CP_R(0.5) * (px[0] + x[0]);
             px[1] = CP_R(0.5) * (px[1] + x[1]);
             err = pt_at(it, px, &m);
@@ -648,61 +647,34 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
             sag[c] = px[0] > sag[c] ? px[0] : sag[c];
         }
         a.p = b.p;
-        pline = line;
+        pline = at.line;
         px[0] = x[0];
         px[1] = x[1];
     }
     return err;
 }
 
-/* Count m (steps, or link + 1 segments) grown for a measured sagitta (~ 1/m^2): rounded
- * up with 5% headroom; 0 if m is already at max. */
-static uint32_t grow(uint32_t m, cp_real sag, cp_real tol, uint32_t max)
-{
-    cp_real want = (cp_real)m * cp_sqrt(sag / (SAG_MARGIN * tol)) * CP_R(1.05);
-    if (m >= max) {
-        return 0u;
-    }
-    want = want < (cp_real)max ? want : (cp_real)max;
-    want = cp_ceil(want);
-    return want > (cp_real)m ? (uint32_t)want : m + 1u;
-}
-
-static int validate(const struct toolpath_cfg *c)
-{
-    if (c->mode > TOOLPATH_CIRCLES || c->output > TOOLPATH_OUT_TIP ||
-        (c->output == TOOLPATH_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
-        return CP_ERR_INVAL;
-    }
-    if (!fin(c->u0 + c->u1 + c->tol + c->tool_r)) {
-        return CP_ERR_NONFINITE;
-    }
-    if (c->n > CP_MAX_LINES || c->steps > CP_MAX_STEPS) {
-        return CP_ERR_TOO_MANY;
-    }
-    if (c->n == 0u || !(cp_fabs(c->u0) <= CP_PI && cp_fabs(c->u1) <= CP_PI) ||
-        (c->u0 == c->u1 && c->n > 1u) ||
-        (c->tol != CP_R(0.0) && !(c->tol >= CP_R(1e-5) && c->tol <= CP_R(10.0))) ||
-        (c->steps == 0u && c->tol == CP_R(0.0)) ||
-        (c->link != TOOLPATH_LINK_AUTO && c->link > CP_MAX_LINK) || c->tool_r > GSR_COEF_MAX) {
-        return CP_ERR_RANGE;
-    }
-    return c->tool_r < CP_R(0.0) ? CP_ERR_TOOL : CP_OK;
-}
+/* The tolerance search (raster_fit): grow from 8 steps / 1 link segment, aim at and
+ * verify with the midpoint sagitta <= SAG_MARGIN tol, at least + 1 per round, an estimate
+ * above the maximum tried at the maximum. */
+static const struct raster_rule gsr_rule = {SAG_MARGIN, SAG_MARGIN, 8u, 0u, 31u, 1u};
+CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct toolpath_cfg *rc)
 {
-    cp_real tol, sag[2];
-    uint32_t m[2];             /* steps, link + 1 */
-    unsigned auto_m;           /* bit c: m[c] derived from tol (else given) */
+    struct raster_fit fit;
+    cp_real sag[2];
     int round, err;
-    if (it == NULL || rc == NULL) {
+    if (it == NULL) {
         return CP_ERR_INVAL;
     }
     it->count = 0;
     err = gsr_init(&it->g, geom);
     if (err == CP_OK) {
-        err = validate(rc);
+        err = raster_check(rc, CP_PI);
+    }
+    if (err == CP_OK && rc->tool_r > GSR_COEF_MAX) {
+        err = CP_ERR_RANGE;
     }
     if (err != CP_OK) {
         return err;
@@ -719,30 +691,19 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
         it->s0 = sigma_of(it, rc->u0);
         it->s1 = sigma_of(it, rc->u1);
     }
-    tol = rc->tol > CP_R(0.0) ? rc->tol : CP_R(1e-3);
-    auto_m = (unsigned)(rc->steps == 0u) |
-             ((unsigned)(rc->link == TOOLPATH_LINK_AUTO && it->n > 1u) << 1);
-    m[0] = rc->steps ? rc->steps : 8u;
-    m[1] = (auto_m > 1u || it->n < 2u ? 0u : rc->link) + 1u;
-    for (round = 0; err == CP_OK && round <= GSR_WALK_ROUNDS; round++) {
-        unsigned c, more = 0;
-        it->steps = (uint16_t)m[0];
-        it->link = (uint16_t)(m[1] - 1u);
-        it->count = (uint32_t)it->n * (m[0] + 1u) + (uint32_t)(it->n - 1u) * (m[1] - 1u);
+    raster_fit_begin(&fit, rc, &gsr_rule);
+    err = RASTER_FIT_MORE;
+    for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
+        it->steps = (uint16_t)fit.m[0];
+        it->link = (uint16_t)(fit.m[1] - 1u);
+        it->count = raster_count(it->n, fit.m[0], fit.m[1] - 1u);
         err = walk(it, sag);
-        for (c = 0; c < 2u && err == CP_OK; c++) { /* steps, then link + 1 (segments) */
-            if (((auto_m >> c) & 1u) && sag[c] > SAG_MARGIN * tol) {
-                m[c] = grow(m[c], sag[c], tol, c ? CP_MAX_LINK + 1u : CP_MAX_STEPS);
-                more = 1;
-            }
+        if (err == CP_OK) {
+            err = raster_fit_update(&fit, sag);
         }
-        if (err == CP_OK && !more) {
-            return gsr_path_seek(it, 0u);
-        }
-        /* grow gives 0 at its max: the link count then wraps above CP_MAX_LINK */
-        if (err == CP_OK && (round == GSR_WALK_ROUNDS || m[0] == 0u || m[1] - 1u > CP_MAX_LINK)) {
-            err = CP_ERR_TOL;
-        }
+    }
+    if (err == CP_OK) {
+        return gsr_path_seek(it, 0u);
     }
     it->count = 0;
     return err;
@@ -755,29 +716,24 @@ uint32_t gsr_path_count(const struct gsr_path *it)
 
 CP_NOINLINE int gsr_path_seek(struct gsr_path *it, uint32_t k)
 {
-    if (k > it->count) {
-        return CP_ERR_RANGE;
-    }
-    it->k = k;
     it->su = CP_R(-1.0); /* u >= 0: no section cached */
     it->cs = CP_R(8.0);  /* |sig| <= 4: no unit point cached */
-    return CP_OK;
+    return raster_seek(&it->k, it->count, k);
 }
 
 int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt)
 {
     cp_real x[2];
-    int32_t line;
-    uint32_t idx;
+    struct raster_at at;
     int err;
     if (it->k >= it->count) {
         return CP_ERR_DONE;
     }
-    locate(it, it->k, x, &line, &idx);
+    locate(it, it->k, x, &at);
     err = pt_at(it, x, pt);
     pt->t = x[0];
-    pt->line = (int16_t)line;
-    pt->index = (uint16_t)idx;
+    pt->line = (int16_t)at.line;
+    pt->index = (uint16_t)at.index;
     it->k += err == CP_OK;
     return err;
 }

@@ -288,8 +288,10 @@ struct gsr_path {
 };
 
 /* Validate geom (gsr_init) and the raster, derive and verify the step counts, walk the
- * whole stream for folds. Errors: every gsr_init code, plus
- *   CP_ERR_INVAL     mode/output out of range, tool radius with OUT_SURFACE
+ * whole stream for folds. Errors: every gsr_init code (checked first), then the raster's
+ * (raster_check, raster.h: INVAL, NONFINITE, RANGE, TOO_MANY, TOOL in that order, then
+ * tool_r > GSR_COEF_MAX), then the walks':
+ *   CP_ERR_INVAL     rc NULL, mode/output out of range, tool radius with OUT_SURFACE
  *   CP_ERR_NONFINITE u0, u1, tol or tool_r NaN/Inf
  *   CP_ERR_RANGE     |v| > pi, v0 == v1 with n > 1, n == 0, tol outside [1e-5, 10] mm,
  *                    steps == 0 with tol == 0, link > CP_MAX_LINK, tool_r > GSR_COEF_MAX

@@ -20,6 +20,7 @@
  */
 #include "toolpath.h"
 #include "cp_math.h"
+#include "raster.h"
 
 #define RICH_COARSE 64u      /* Richardson estimate: coarse panel count over [t0, t1] */
 #define WALK_MAX_ROUNDS 4    /* step-count refinements from the measured sagitta */
@@ -410,43 +411,24 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
     return CP_OK;
 }
 
+
+/* The raster checks shared with the other models (raster_check: INVAL, NONFINITE, RANGE,
+ * TOO_MANY, TOOL in that order) after the canal's own kinds (labels, span: INVAL first),
+ * then substeps. */
 static int validate(const struct toolpath_cfg *cfg)
 {
-    cp_real umax;
-    /* mode, labels and span are each 0 or 1 */
-    if ((cfg->mode | cfg->labels | cfg->span) > 1u || cfg->output > TOOLPATH_OUT_TIP ||
+    int err;
+    /* labels and span are each 0 or 1; span ANGLE needs CIRCLES and angle labels */
+    if ((cfg->labels | cfg->span) > 1u ||
         (cfg->span == TOOLPATH_SPAN_ANGLE &&
          (cfg->mode != TOOLPATH_CIRCLES || cfg->labels != TOOLPATH_LABEL_ANGLE))) {
         return CP_ERR_INVAL;
     }
-    if (!cp_isfinite(cfg->u0) || !cp_isfinite(cfg->u1) || !cp_isfinite(cfg->tol) ||
-        !cp_isfinite(cfg->tool_r)) {
-        return CP_ERR_NONFINITE;
+    err = raster_check(cfg, cfg->labels == TOOLPATH_LABEL_LAMBDA ? CANAL_COORD_MAX : CP_PI);
+    if (err == CP_OK && cfg->substeps > CP_MAX_SUBSTEPS) {
+        err = CP_ERR_TOO_MANY;
     }
-    umax = cfg->labels == TOOLPATH_LABEL_LAMBDA ? CANAL_COORD_MAX : CP_PI;
-    if (cfg->n == 0u || cp_fabs(cfg->u0) > umax || cp_fabs(cfg->u1) > umax ||
-        (cfg->u0 == cfg->u1 && cfg->n > 1u)) {
-        return CP_ERR_RANGE;
-    }
-    if (cfg->tol != CP_R(0.0) && (cfg->tol < CP_R(1e-5) || cfg->tol > CP_R(10.0))) {
-        return CP_ERR_RANGE;
-    }
-    if (cfg->steps == 0u && cfg->tol == CP_R(0.0)) {
-        return CP_ERR_RANGE;
-    }
-    if (cfg->n > CP_MAX_LINES || cfg->steps > CP_MAX_STEPS || cfg->substeps > CP_MAX_SUBSTEPS) {
-        return CP_ERR_TOO_MANY;
-    }
-    if (cfg->link != TOOLPATH_LINK_AUTO && cfg->link > CP_MAX_LINK) {
-        return CP_ERR_RANGE;
-    }
-    if (cfg->tool_r < CP_R(0.0)) {
-        return CP_ERR_TOOL;
-    }
-    if (cfg->output == TOOLPATH_OUT_SURFACE && cfg->tool_r != CP_R(0.0)) {
-        return CP_ERR_INVAL;
-    }
-    return CP_OK;
+    return err;
 }
 
 static int init_lines(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)

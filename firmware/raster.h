@@ -1,0 +1,132 @@
+/* raster.h - the raster plumbing the model iterators share: the checks of a raster
+ * request, the zigzag layout of its points, and the search for step/link counts that
+ * meet a chord tolerance.
+ * SPDX-License-Identifier: MIT
+ *
+ * A raster (struct toolpath_cfg, toolpath.h) is n lines (or rings) of steps + 1 points
+ * each, zigzag (odd lines run backwards), consecutive lines joined by `link` points:
+ *
+ *   block j (j = 0..n-1) = line j (steps + 1 points) + the link j -> j + 1 (link points,
+ *   none after the last line);  count = n (steps + 1) + (n - 1) link.
+ *
+ * Users: gsr.c, channel.c, drc.c (their *_path_* iterators) and toolpath.c (the canal's
+ * raster checks). What a line is, where a point lies and how a sagitta is measured stay
+ * in the models; this module only does the integer and control-flow parts, so every
+ * model keeps its own geometry and every function here is small and cannot loop.
+ *
+ * No function pointers (tools/stack.sh follows the call graph): the tolerance search is
+ * a state (struct raster_fit) the model's init drives from its own loop, a walk of its
+ * stream between two calls:
+ *
+ *     raster_fit_begin(&fit, cfg, &rule);
+ *     for (round = 0; round <= RASTER_FIT_ROUNDS; round++) {
+ *         set steps = fit.m[0], link = fit.m[1] - 1; walk the stream -> sag[2] (or error)
+ *         err = raster_fit_update(&fit, sag);
+ *         if (err != RASTER_FIT_MORE) break;        (CP_OK: counts final; CP_ERR_TOL)
+ *     }
+ *
+ * raster_fit_update never answers RASTER_FIT_MORE after round RASTER_FIT_ROUNDS, so that
+ * loop always ends with CP_OK or CP_ERR_TOL (at most RASTER_FIT_ROUNDS + 1 walks).
+ *
+ * Units: tol and sagittas in mm, u0/u1 as the model labels its lines (radians for every
+ * model but the canal's lambda labels). No state outside the caller's structs.
+ */
+#ifndef RASTER_H
+#define RASTER_H
+
+#include "toolpath.h"
+
+/* ---- checks ---- */
+
+/* Check the raster fields every model uses, in this order (the first failing group
+ * gives the code; a model checks its own extras after this, see its header):
+ *   CP_ERR_INVAL     c NULL, mode > TOOLPATH_CIRCLES, output > TOOLPATH_OUT_TIP, or
+ *                    tool_r != 0 with TOOLPATH_OUT_SURFACE (NaN included)
+ *   CP_ERR_NONFINITE u0, u1, tol or tool_r NaN or Inf
+ *   CP_ERR_RANGE     n == 0, |u0| or |u1| > umax, u0 == u1 with n > 1, tol != 0 outside
+ *                    [1e-5, 10] mm, steps == 0 with tol == 0 (nothing to derive steps
+ *                    from), link > CP_MAX_LINK (other than TOOLPATH_LINK_AUTO)
+ *   CP_ERR_TOO_MANY  n > CP_MAX_LINES, steps > CP_MAX_STEPS
+ *   CP_ERR_TOOL      tool_r < 0
+ * umax > 0: bound of |u0|, |u1| (CP_PI for angle labels). Returns CP_OK otherwise.
+ * Not checked here: labels, span, substeps (canal only), the tool against the surface. */
+CP_MUST_CHECK int raster_check(const struct toolpath_cfg *c, cp_real umax);
+
+/* ---- layout ---- */
+
+/* Points of a raster: n (steps + 1) + (n - 1) link (n >= 1). n <= CP_MAX_LINES, steps <=
+ * 2 CP_MAX_STEPS, link <= 2 CP_MAX_LINK + 1 (the doubled rasters of the init walks)
+ * cannot overflow. */
+uint32_t raster_count(uint32_t n, uint32_t steps, uint32_t link);
+
+/* Where point k is (raster_locate). */
+struct raster_at {
+    uint32_t j;     /* block: line/ring j, or the link from line j to line j + 1 */
+    uint32_t i;     /* position along the line in the line's running coordinate,
+                       0..steps, zigzag applied (odd j: steps - r). On a link: the end where
+                       line j stopped (steps for even j, 0 for odd j) */
+    uint32_t a;     /* link point number 1..link (travel order); 0 on a line */
+    int32_t line;   /* toolpath_pt.line: j on a line, -1 on a link */
+    uint32_t index; /* toolpath_pt.index: i on a line, a on a link */
+};
+
+/* Point k (0 <= k; k < count for a point of the stream) of the raster (steps >= 1,
+ * link): fills at. Cost: one division. Cannot fail. */
+void raster_locate(uint32_t k, uint32_t steps, uint32_t link, struct raster_at *at);
+
+/* Restart position: *pos = k if k <= count (CP_OK), else CP_ERR_RANGE (*pos unchanged). */
+CP_MUST_CHECK int raster_seek(uint32_t *pos, uint32_t count, uint32_t k);
+
+/* ---- step and link counts from the chord tolerance ---- */
+
+/* Walks after the first one (the search ends by round RASTER_FIT_ROUNDS). */
+#define RASTER_FIT_ROUNDS 4
+/* Least derived counts: steps per line, segments per link (link + 1). */
+#define RASTER_MIN_STEPS 8u
+/* raster_fit_update: walk again with the new counts in m[] (> 0: not a cp_err code). */
+#define RASTER_FIT_MORE 1
+
+/* How a model searches (a const table of the model; the models measure their sagittas
+ * differently, so each keeps the rule its measure was tuned with). The estimate for a
+ * count m with measured sagitta s (s ~ 1/m^2) is
+ *     f = m sqrt(s / (aim tol)) 1.05,  want = ceil(f) (at least RASTER_MIN_STEPS / 1).
+ * A count is verified when s <= accept tol. */
+struct raster_rule {
+    cp_real aim;        /* the sagitta the estimate aims at, x tol: (0, accept] */
+    cp_real accept;     /* the sagitta that verifies a count, x tol: (0, 1] */
+    uint16_t start;     /* first derived steps count, RASTER_MIN_STEPS..CP_MAX_STEPS */
+    uint8_t pilot;      /* 1: the first walk is a pilot: every derived count is re-estimated
+                           from it, up or down (even a verified one); 0: only grown */
+    uint8_t grow_shift; /* a count re-estimated after the pilot (or any count, pilot 0) grows
+                           by at least 1 + (m >> grow_shift): 0..31 (31: by at least 1) */
+    uint8_t clamp;      /* 1: an estimate above the maximum is tried at the maximum (CP_ERR_TOL
+                           when the maximum itself fails); 0: CP_ERR_TOL at once */
+};
+
+/* The search state (the caller's; read m[] between the calls, write nothing). */
+struct raster_fit {
+    const struct raster_rule *rule; /* the model's rule (must outlive the search) */
+    cp_real tol;                    /* mm: cfg tol, or 1 um when tol == 0 (links only) */
+    uint32_t m[2];                  /* segments: m[0] = steps (1..CP_MAX_STEPS), m[1] = link
+                                       + 1 (1..CP_MAX_LINK + 1) */
+    uint8_t derive;                 /* bit q: m[q] is derived (else given, never changed) */
+    uint8_t round;                  /* walks measured so far */
+};
+
+/* Start a search for a raster c that passed raster_check: steps derived when c->steps == 0
+ * (first m[0] = rule->start), else m[0] = c->steps; link derived when c->link ==
+ * TOOLPATH_LINK_AUTO and c->n > 1 (first m[1] = 1), else m[1] = link + 1 (1 when n == 1).
+ * Cannot fail. */
+void raster_fit_begin(struct raster_fit *f, const struct toolpath_cfg *c,
+                      const struct raster_rule *rule);
+
+/* The sagittas measured on a walk with the counts in m[]: sag[0] of the line/ring segments,
+ * sag[1] of the link segments (mm, >= 0). Returns
+ *   CP_OK            every derived count verified (or nothing derived): m[] final
+ *   RASTER_FIT_MORE  m[] changed: walk again (never after round RASTER_FIT_ROUNDS)
+ *   CP_ERR_TOL       a derived count would exceed CP_MAX_STEPS / CP_MAX_LINK + 1, or the
+ *                    counts are not verified by round RASTER_FIT_ROUNDS
+ * A NaN sagitta is not verified (its estimate: the maximum with clamp, else CP_ERR_TOL). */
+int raster_fit_update(struct raster_fit *f, const cp_real *sag);
+
+#endif /* RASTER_H */
