@@ -64,35 +64,41 @@ struct job {
     uint8_t checksum;        /* 1: N<n> ... *<cs> line numbers and checksums */
 };
 
-/* One tokenised command line, for the models' command hooks: token i is
- * s[st[i] .. st[i] + ln[i]), i < nt (nt <= JOB_MAX_TOKENS). */
-struct job_line {
-    const char *s;
-    const uint16_t *st, *ln;
-    unsigned nt;
+/* Most numbers of one command (SECTION's 9). */
+#define JOB_MAX_NUMBERS 9u
+
+/* One command line as job_command has checked it for a model's command hook: the
+ * keyword, the word after it (if the command takes one), the arity and every number
+ * are already valid (the wire status of the first failure is answered before the
+ * hook is called). */
+struct job_args {
+    unsigned cmd;               /* the command: the index of its keyword in the model's list */
+    unsigned sub;               /* index of the word after it in the command's word list
+                                   (a number instead, THICKEN K: the list's length) */
+    unsigned na;                /* numbers in v[] */
+    uint32_t u;                 /* the unsigned number: THICKEN K (and the canal's STEPS,
+                                   RXBUF, LINES/CIRCLES n) */
+    cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
 };
 
-/* Parse tokens first..first+n-1 of l as numbers into v[]. Returns a wire status. */
-int job_numbers(const struct job_line *l, unsigned first, unsigned n, cp_real *v);
-
-/* A model's command hook, int job_<m>_command(struct job *j, const struct
- * job_line *l), called directly from job.c's model_command(). With j == NULL: 1
- * if l's first token is one of the model's keywords, else 0. Otherwise: apply the
- * command to j->geom (j->kind is the model's; set its JOB_HAVE_* bits) and return
- * a wire status. */
+/* A model's command hook, int job_<m>_command(struct job *j, struct job_args *a),
+ * called directly from job.c when j->kind is the model's: apply the command to j->geom
+ * (set its JOB_HAVE_* bits) and return a wire status (a->v may serve as scratch). The
+ * keywords, their words and number counts are in job.c's table (`words`), in the order
+ * of a->cmd and a->sub. */
 
 /* SURFACE CHANNEL (job_channel.c): SECTION, AXES, SECTIONS CLEAR; defaults: no section. */
-int job_channel_command(struct job *j, const struct job_line *l);
+int job_channel_command(struct job *j, struct job_args *a);
 void job_channel_defaults(union path_geom *g);
 
 /* SURFACE GSR (job_gsr.c): CENTER, RADII, FRAME, FORM; defaults: centre 0, f_t(u) = u,
  * FRAME FIXED (not set), FORM RATIONAL. */
-int job_gsr_command(struct job *j, const struct job_line *l);
+int job_gsr_command(struct job *j, struct job_args *a);
 void job_gsr_defaults(union path_geom *g);
 
 /* SURFACE DRC (job_drc.c): POINT, POINTS CLEAR, THICKEN, EDGE; defaults: no point,
  * THICKEN AUTO, EDGE OFF. */
-int job_drc_command(struct job *j, const struct job_line *l);
+int job_drc_command(struct job *j, struct job_args *a);
 void job_drc_defaults(union path_geom *g);
 
 /* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE. */

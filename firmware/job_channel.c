@@ -7,13 +7,13 @@
  *   AXES x1 x2 x3 z1 z2 z3    replace the last section's orientation by explicit rows: local x
  *                             axis (the a axis) and section normal (unit, orthogonal, 1e-4)
  *   SECTIONS CLEAR            forget the sections
- * Each command checks its section at once (channel_section_check: error:6 range, 28 a or
+ * job.c checks the arity (error:3), numbers (4/5) and words (9). Each command checks its
+ * section at once (channel_section_check: error:6 range, 28 a or
  * b <= 0, 32 n < 1, 36 a = b with n != 2); SECTION beyond CP_MAX_SECTIONS sections answers
  * error:14 (too many), AXES before any SECTION error:31 (too few: nothing to apply to); RUN
  * checks the geometry (channel_path_init).
  */
 #include "job.h"
-#include "parse.h"
 
 #define JOB_HAVE_SECTION JOB_HAVE_CHANNEL_SECTION
 
@@ -24,47 +24,30 @@ void job_channel_defaults(union path_geom *g)
     g->channel.count = 0u;
 }
 
-int job_channel_command(struct job *j, const struct job_line *l)
+int job_channel_command(struct job *j, struct job_args *a)
 {
-    static const char *const kw[3] = {"SECTION", "AXES", "SECTIONS"};
-    static const uint8_t na[3] = {9u, 6u, 1u}; /* arguments */
-    struct channel_cfg *g;
+    struct channel_cfg *g = &j->geom.channel;
     struct channel_section s;
     cp_real *sv = (cp_real *)&s; /* 12 reals (static assert in channel.c) */
-    unsigned c, i;
+    unsigned c = a->cmd, i;
     int st;
-    for (c = 0; c < 3u && (l->nt == 0u || !parse_is(l->s + l->st[0], l->ln[0], kw[c])); c++) {
-    }
-    if (j == NULL || c == 3u) {
-        return j == NULL ? (c < 3u) : JOB_NOT_MINE;
-    }
-    g = &j->geom.channel;
-    if (l->nt != 1u + na[c]) {
-        return CP_ST_BAD_ARITY;
-    }
     if (c == 2u) { /* SECTIONS CLEAR */
-        if (!parse_is(l->s + l->st[1], l->ln[1], "CLEAR")) {
-            return CP_ST_BAD_KEYWORD;
-        }
         g->count = 0u;
         j->have &= (uint16_t)~JOB_HAVE_SECTION;
         return CP_ST_OK;
     }
-    /* the numbers straight into the section: SECTION a b n centre at 0..5 and the angles
-     * at 6..8 (the x row, which channel_euler then writes); AXES the rows x, z at 6..11 */
-    st = job_numbers(l, 1u, na[c], sv + 6u * c);
-    if (st != CP_ST_OK) {
-        return st;
+    if (c == 0u && g->count >= CP_MAX_SECTIONS) {
+        return CP_ST_TOO_MANY;
+    }
+    /* SECTION a b n centre at 0..5 and the angles at 6..8 (the x row, which
+     * channel_euler then writes; |angle| <= 360); AXES the rows x, z at 6..11 */
+    for (i = 0; i < a->na; i++) {
+        sv[6u * c + i] = a->v[i];
+        if (c == 0u && i >= 6u && cp_fabs(a->v[i]) > CP_R(360.0)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
     }
     if (c == 0u) { /* SECTION: a b n, centre, angles */
-        if (g->count >= CP_MAX_SECTIONS) {
-            return CP_ST_TOO_MANY;
-        }
-        for (i = 6u; i < 9u; i++) {
-            if (cp_fabs(sv[i]) > CP_R(360.0)) {
-                return CP_ST_OUT_OF_RANGE;
-            }
-        }
         channel_euler(&s, sv[6] * CP_DEG2RAD, sv[7] * CP_DEG2RAD, sv[8] * CP_DEG2RAD,
                       CHANNEL_ORDER_SPIN_FIRST);
     } else { /* AXES: rows x, z of the last section */

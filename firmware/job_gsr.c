@@ -10,48 +10,15 @@
  *   RADII N|B|T a0 a1 a2 a3 b c w    f_N(u), f_B(u) (both needed), f_t(u) (default u)
  *   FRAME FIXED|FRENET | FRAME N0|RMF x y z
  *   FORM RATIONAL|TRIG               section points (default RATIONAL)
- * Arity error:3, numbers error:4/5, range error:6 (|a_i|, |b|, |c|, |x|, ref <= 1e4 mm,
- * |w| <= 23040 deg, ref != 0), keyword error:9. The geometry itself is checked by RUN.
+ * Arity error:3, numbers error:4/5, keyword error:9 (job.c checks these: the keywords,
+ * words and number counts are in its table), range error:6 (|a_i|, |b|, |c|, |x|, ref
+ * <= 1e4 mm, |w| <= 23040 deg, ref != 0). The geometry itself is checked by RUN.
  */
 #include "job.h"
-#include "parse.h"
 
 /* cfg.set bits: Bezier points 0..3, radii N and B */
 #define SET_BEZIER 0x0Fu
 #define SET_RADII 0x30u
-
-/* The keywords, each after a digit: how many numbers follow it. A "|" ends a list: list 0
- * the commands, list 1 + c the words of command c (the enum values in their order). */
-static const char words[] = "0CENTER\0" "0RADII\0" "0FRAME\0" "0FORM\0" "|\0"
-                            "7X\0" "7Y\0" "7Z\0" "3P0\0" "3P1\0" "3P2\0" "3P3\0" "|\0"
-                            "7N\0" "7B\0" "7T\0" "|\0"
-                            "0FIXED\0" "0FRENET\0" "3N0\0" "3RMF\0" "|\0"
-                            "0RATIONAL\0" "0TRIG\0" "|";
-
-/* Index of token t in word list `list`; *na = its number count, or 8 if not found. */
-static unsigned pick(const struct job_line *l, unsigned t, unsigned list, unsigned *na)
-{
-    unsigned i, k = 0;
-    *na = 8u;
-    for (i = 0; i < sizeof words; i++) {
-        const char *w = words + i;
-        if (i > 0u && w[-1] != '\0') {
-            continue; /* not the start of a word */
-        }
-        if (*w == '|') {
-            if (list-- == 0u) {
-                break;
-            }
-            k = 0;
-        } else if (list == 0u && parse_is(l->s + l->st[t], l->ln[t], w + 1)) {
-            *na = (unsigned)(*w - '0');
-            break;
-        } else {
-            k++;
-        }
-    }
-    return k;
-}
 
 /* Zero the 3 functions m[0..2]. */
 static void zero3(cp_real (*m)[GSR_FN])
@@ -75,30 +42,11 @@ void job_gsr_defaults(union path_geom *g)
     c->set = 0;
 }
 
-int job_gsr_command(struct job *j, const struct job_line *l)
+int job_gsr_command(struct job *j, struct job_args *a)
 {
     struct gsr_cfg *c;
-    cp_real v[GSR_FN];
-    unsigned cmd, k, na, i, bz, bit, mask, have;
-    int s;
-    cmd = pick(l, 0u, 0u, &na);
-    if (j == NULL || na > 7u) {
-        return j == NULL ? na <= 7u : JOB_NOT_MINE;
-    }
-    if (l->nt < 2u) {
-        return CP_ST_BAD_ARITY;
-    }
-    k = pick(l, 1u, cmd + 1u, &na);
-    if (na > 7u) {
-        return CP_ST_BAD_KEYWORD;
-    }
-    if (l->nt != 2u + na) {
-        return CP_ST_BAD_ARITY;
-    }
-    s = job_numbers(l, 2u, na, v);
-    if (s != CP_ST_OK) {
-        return s;
-    }
+    cp_real *v = a->v;
+    unsigned cmd = a->cmd, k = a->sub, na = a->na, i, bz, bit, mask, have;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
             return CP_ST_OUT_OF_RANGE;

@@ -28,11 +28,12 @@
  *   2. here: include <m>.h, add the cfg to union path_geom and the iterator to
  *      struct path's union, and set PATH_HAVE_<M> to 1.
  *   3. path.c: one case in each switch (init, count, next, seek, info).
- *   4. firmware/job_<m>.c: int job_<m>_command(struct job *, const struct
- *      job_line *) (job.h) and a defaults function; in job.c one case each in
- *      model_command() and model_defaults(), and need[PATH_<M>] = the have bits
- *      RUN needs (job.h JOB_HAVE_<M>_MASK). Its cp_err codes map to wire codes
- *      (appended to cp_status.def) in job_status_of().
+ *   4. firmware/job_<m>.c: int job_<m>_command(struct job *, struct job_args *)
+ *      (job.h) and a defaults function; in job.c its keywords, their words and
+ *      number counts in the `words` table (and KW_<M>), one case each in
+ *      job_command()'s hook switch and model_defaults(), and need[PATH_<M>] = the
+ *      have bits RUN needs (job.h JOB_HAVE_<M>_MASK). Its cp_err codes map to wire
+ *      codes (appended to cp_status.def) in job_status_of().
  *   5. docs/PROTOCOL.md: the commands; host_sim: a judge of the model's stream.
  */
 #ifndef PATH_H

@@ -56,8 +56,9 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
     }
     {
         /* every counter, length, flag and buffer 0: line_len, rx/tx, err = CP_OK,
-         * state = PROTO_IDLE, fmt = JOB_GCODE, path.kind = PATH_CANAL, count 0, ... */
-        unsigned char *b = (unsigned char *)p;
+         * state = PROTO_IDLE, fmt = JOB_GCODE, path.kind = PATH_CANAL, count 0, ...
+         * (volatile stores, as in job_init: no library memset in the image) */
+        volatile unsigned char *b = (volatile unsigned char *)p;
         size_t i;
         for (i = 0; i < sizeof *p; i++) {
             b[i] = 0u;
