@@ -37,6 +37,17 @@ static cp_real bern3(const cp_real *r, cp_real s)
            r[3] * s * s * s;
 }
 
+/* Derivatives d/ds, d2/ds2 of the cubic Bernstein polynomial with coefficients c[0],
+ * c[st], c[2 st], c[3 st] at s (u = 1 - s): the Bezier coordinates (stride 2) and the
+ * CUBIC radius law (stride 1) share it. */
+static CP_NOINLINE void bern3_d(const cp_real *c, unsigned st, cp_real s, cp_real u, cp_real *d,
+                                cp_real *dd)
+{
+    cp_real c0 = c[0], c1 = c[st], c2 = c[2u * st], c3 = c[3u * st];
+    *d = CP_R(3.0) * ((c1 - c0) * u * u + CP_R(2.0) * (c2 - c1) * s * u + (c3 - c2) * s * s);
+    *dd = CP_R(6.0) * ((c2 - CP_R(2.0) * c1 + c0) * u + (c3 - CP_R(2.0) * c2 + c1) * s);
+}
+
 /* Exact range of R over the normalized parameter s in [0, 1]. */
 static void radius_range(const struct canal *c, cp_real *range)
 {
@@ -130,7 +141,7 @@ static cp_real bezier_speed2(const struct canal *p, cp_real s)
 static cp_real bezier_min_speed(const struct canal *p)
 {
     cp_real best = bezier_speed2(p, CP_R(0.0));
-    cp_real a, b, x1, x2, f1, f2;
+    cp_real a, b, x1, x2, f1, f2, e[2], x[2], fx[2];
     const cp_real gr = CP_R(0.6180339887498949);
     int i, ibest = 0;
     for (i = 1; i <= BEZIER_SPEED_SAMPLES; i++) {
@@ -147,23 +158,25 @@ static cp_real bezier_min_speed(const struct canal *p)
     x2 = a + gr * (b - a);
     f1 = bezier_speed2(p, x1);
     f2 = bezier_speed2(p, x2);
+    e[0] = a;
+    e[1] = b;
+    x[0] = x1;
+    x[1] = x2;
+    fx[0] = f1;
+    fx[1] = f2;
     for (i = 0; i < BEZIER_SPEED_REFINE; i++) {
-        if (f1 < f2) {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - gr * (b - a);
-            f1 = bezier_speed2(p, x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + gr * (b - a);
-            f2 = bezier_speed2(p, x2);
-        }
+        /* the bracket end on the larger probe's side (s) moves onto it, its probe takes
+         * the other one's place, and a new probe goes in at e[s] - gr (e[s] - e[o]): for
+         * s = 0 that is a + gr (b - a), the same float value (negation is exact) */
+        int s = fx[0] < fx[1], o = 1 - s;
+        e[s] = x[s];
+        x[s] = x[o];
+        fx[s] = fx[o];
+        x[o] = e[s] - gr * (e[s] - e[o]);
+        fx[o] = bezier_speed2(p, x[o]);
     }
-    best = f1 < best ? f1 : best;
-    best = f2 < best ? f2 : best;
+    best = fx[0] < best ? fx[0] : best;
+    best = fx[1] < best ? fx[1] : best;
     return cp_sqrt(best);
 }
 
@@ -217,21 +230,14 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     }
     case CANAL_ARC:
     case CANAL_ELLIPSE: {
-        unsigned ia = c->curve == CANAL_ARC ? 3u : 4u;
-        cp_real a0 = c->cp[ia], a1 = c->cp[ia + 1u];
-        if (c->curve == CANAL_ARC) {
-            if (c->cp[2] <= CP_R(0.0)) {
-                return CP_ERR_RANGE;
-            }
-            c->cmin = c->cp[2];
-            size = c->cp[2];
-        } else {
-            if (c->cp[2] <= CP_R(0.0) || c->cp[3] <= CP_R(0.0)) {
-                return CP_ERR_RANGE;
-            }
-            c->cmin = c->cp[2] < c->cp[3] ? c->cp[2] : c->cp[3];
-            size = c->cp[2] > c->cp[3] ? c->cp[2] : c->cp[3];
+        /* an ARC is an ellipse with A = B = r (as in jet_eval) */
+        cp_real a0 = c->cp[na], a1 = c->cp[na + 1u];
+        cp_real ra = c->cp[2], rb = c->curve == CANAL_ARC ? ra : c->cp[3];
+        if (ra <= CP_R(0.0) || rb <= CP_R(0.0)) {
+            return CP_ERR_RANGE;
         }
+        c->cmin = ra < rb ? ra : rb;
+        size = ra > rb ? ra : rb;
         if (a0 == a1) {
             return CP_ERR_EMPTY;
         }
@@ -292,8 +298,9 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-/* The jet; second = 0 skips the second derivatives (they are left unset): the
- * streamed point needs only C, C', R, R'. One body for both (flash over speed). */
+/* The jet; second = 0 skips the second derivatives where they cost (they are then
+ * unspecified; BEZIER and CUBIC set them anyway): the streamed point needs only C, C',
+ * R, R'. One body for both (flash over speed). */
 static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
                                  struct canal_jet *restrict j, int second)
 {
@@ -334,14 +341,8 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         b3 = t * t * t;
         j->x = b0 * p[0] + b1 * p[2] + b2 * p[4] + b3 * p[6];
         j->y = b0 * p[1] + b1 * p[3] + b2 * p[5] + b3 * p[7];
-        j->dx = CP_R(3.0) *
-                ((p[2] - p[0]) * u * u + CP_R(2.0) * (p[4] - p[2]) * t * u + (p[6] - p[4]) * t * t);
-        j->dy = CP_R(3.0) *
-                ((p[3] - p[1]) * u * u + CP_R(2.0) * (p[5] - p[3]) * t * u + (p[7] - p[5]) * t * t);
-        j->ddx = CP_R(6.0) *
-                 ((p[4] - CP_R(2.0) * p[2] + p[0]) * u + (p[6] - CP_R(2.0) * p[4] + p[2]) * t);
-        j->ddy = CP_R(6.0) *
-                 ((p[5] - CP_R(2.0) * p[3] + p[1]) * u + (p[7] - CP_R(2.0) * p[5] + p[3]) * t);
+        bern3_d(p, 2u, t, u, &j->dx, &j->ddx);     /* x: p[0], p[2], p[4], p[6] */
+        bern3_d(p + 1, 2u, t, u, &j->dy, &j->ddy); /* y: p[1], p[3], p[5], p[7] */
         break;
     }
     }
@@ -382,16 +383,9 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
     default: /* CANAL_R_CUBIC */
         u = CP_R(1.0) - s;
         j->r = bern3(rp, s);
-        j->dr = CP_R(3.0) *
-                ((rp[1] - rp[0]) * u * u + CP_R(2.0) * (rp[2] - rp[1]) * s * u +
-                 (rp[3] - rp[2]) * s * s) *
-                c->inv_span;
-        if (second) {
-            j->ddr = CP_R(6.0) *
-                     ((rp[2] - CP_R(2.0) * rp[1] + rp[0]) * u +
-                      (rp[3] - CP_R(2.0) * rp[2] + rp[1]) * s) *
-                     c->inv_span * c->inv_span;
-        }
+        bern3_d(rp, 1u, s, u, &j->dr, &j->ddr); /* d/ds; ddr unused unless second */
+        j->dr = j->dr * c->inv_span;
+        j->ddr = j->ddr * c->inv_span * c->inv_span;
         break;
     }
 }

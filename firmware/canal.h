@@ -124,8 +124,8 @@ CP_MUST_CHECK int canal_init(struct canal *c, const struct canal_cfg *cfg);
 /* The jet of C and R at t (any t; meaningful in [t0, t1]). Cannot fail. */
 void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
 
-/* The jet without second derivatives (ddx, ddy, ddr are left unset): enough for
- * canal_frame_pt and a point. */
+/* The jet without second derivatives (ddx, ddy, ddr are unspecified: some kinds set
+ * them anyway): enough for canal_frame_pt and a point. */
 void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
 
 /* The part of the frame a point needs (x, y, tx, ty, r, p, q2); kappa and dpds are left

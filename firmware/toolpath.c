@@ -139,7 +139,8 @@ static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_re
 }
 
 /* Homogeneous label of the line starting at angle u on the FIRST circle:
- * (q0 cos(u/2), sin(u/2)) - MATH-canal §5.2. */
+ * (q0 cos(u/2), sin(u/2)) - MATH-canal §5.2. With span ANGLE (CIRCLES) the
+ * frame-independent part (cos(u/2), sin(u/2)) of the fixed angle u instead (label_h). */
 static void first_label(const struct toolpath *tp, cp_real u, cp_real *alpha, cp_real *b)
 {
     cp_real sn, cs;
@@ -149,8 +150,16 @@ static void first_label(const struct toolpath *tp, cp_real u, cp_real *alpha, cp
         return;
     }
     cp_sincos(CP_R(0.5) * u, &sn, &cs);
-    *alpha = tp->q0 * cs;
+    *alpha = (tp->span == TOOLPATH_SPAN_ANGLE ? CP_R(1.0) : tp->q0) * cs;
     *b = sn;
+}
+
+/* h of the label at frame f (Lambda = lam) of the line whose first_label (or line_label)
+ * is (alpha, b): alpha + lam b; span ANGLE, the fixed angle: q alpha. Its b is b. */
+static cp_real label_h(const struct toolpath *tp, const struct canal_frame *f, cp_real lam,
+                       cp_real alpha, cp_real b)
+{
+    return tp->span == TOOLPATH_SPAN_ANGLE ? cp_sqrt(f->q2) * alpha : alpha + lam * b;
 }
 
 /* Start angle of family-2 line j. */
@@ -191,15 +200,8 @@ static void line_label(const struct toolpath *tp, uint32_t j, cp_real *alpha, cp
 static void bound_label(const struct toolpath *tp, cp_real u, const struct canal_frame *f,
                         cp_real lam, cp_real *h, cp_real *b)
 {
-    if (tp->span == TOOLPATH_SPAN_ANGLE) {
-        cp_real sn, cs;
-        cp_sincos(CP_R(0.5) * u, &sn, &cs);
-        *h = cp_sqrt(f->q2) * cs;
-        *b = sn;
-        return;
-    }
     first_label(tp, u, h, b);
-    *h += lam * *b;
+    *h = label_h(tp, f, lam, *h, *b);
 }
 
 /* Label of the point at fraction sig in [0, 1] of the way, uniform in contact-frame
@@ -310,47 +312,50 @@ static uint32_t mul_sat(uint32_t a, uint32_t b)
     return (b != 0u && a > 0xFFFFFFFFu / b) ? 0xFFFFFFFFu : a * b;
 }
 
-/* Walk the whole patch once at twice the output resolution (LINES mode): every
- * output node and every segment midpoint of every line, plus the link arcs.
- * Measures the max midpoint sagitta of the emitted positions and checks regularity
- * and finiteness. Work: n (2N + 1) points, fixed before it starts. */
-static CP_NOINLINE int walk_lines(const struct toolpath *tp, cp_real *sag)
+/* Walk the grid once at twice its resolution (gsteps steps of 2 substeps panels, each
+ * split in two: the same panel width hp as the real run, so this Lambda is at least as
+ * accurate) and measure the max midpoint sagitta of the emitted positions along the
+ * family-2 lines the stream runs along: LINES every line (and every output node and
+ * segment midpoint of it must be regular and finite), CIRCLES the two bounding lines
+ * its link moves follow. Work: 2 gsteps + 1 frames and, per step, 3 points on each of
+ * those n or 2 lines; fixed before it starts. */
+static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_real *sag)
 {
     struct quad q;
     struct canal_jet j;
     struct canal_frame f[3];
     cp_real lam[3];
-    cp_real hp2 = tp->hp * CP_R(0.5); /* half-node width of the doubled grid */
-    uint32_t half_m = tp->substeps;   /* panels per doubled step: same panel width */
-    uint32_t i, jl;
+    uint32_t m = tp->substeps, i, k, l;
+    int lines = tp->mode == TOOLPATH_LINES;
+    uint32_t nl = lines ? tp->n : 2u;
     cp_real smax = CP_R(0.0);
-    /* The doubled grid: output nodes of N' = 2N steps, Simpson panels of width 2 hp2
-     * = hp, i.e. substeps panels per half output step (same resolution as the real
-     * run, so its Lambda is at least as accurate). */
     quad_reset(&tp->surf, &q, &j);
     canal_frame(&j, &f[0]);
     lam[0] = q.lam;
-    for (i = 0; i < tp->steps; i++) {
-        uint32_t a = 4u * tp->substeps * i; /* half-node index on the hp2 grid */
-        quad_march(tp, &q, a, half_m, 1, hp2, &j);
-        canal_frame(&j, &f[1]);
-        lam[1] = q.lam;
-        quad_march(tp, &q, a + 2u * half_m, half_m, 1, hp2, &j);
-        canal_frame(&j, &f[2]);
-        lam[2] = q.lam;
-        for (jl = 0; jl < tp->n; jl++) {
+    for (i = 0; i < gsteps; i++) {
+        /* m panels of width hp per half grid step, on the hp/2 half-node grid */
+        for (k = 1; k < 3u; k++) {
+            quad_march(tp, &q, 4u * m * i + 2u * m * (k - 1u), m, 1, tp->hp * CP_R(0.5), &j);
+            canal_frame(&j, &f[k]);
+            lam[k] = q.lam;
+        }
+        for (l = 0; l < nl; l++) {
             cp_real al, bl, s2, h[3], b[3];
-            int k, fin;
-            line_label(tp, jl, &al, &bl);
-            for (k = 0; k < 3; k++) {
-                h[k] = al + lam[k] * bl;
+            int fin;
+            if (lines) {
+                line_label(tp, l, &al, &bl);
+            } else {
+                first_label(tp, l ? tp->u1 : tp->u0, &al, &bl);
+            }
+            for (k = 0; k < 3u; k++) {
+                h[k] = label_h(tp, &f[k], lam[k], al, bl);
                 b[k] = bl;
-                if (k >= (i == 0u ? 0 : 1) && !regular(tp, &f[k], h[k], bl)) {
+                if (lines && k >= (i == 0u ? 0u : 1u) && !regular(tp, &f[k], h[k], bl)) {
                     return CP_ERR_CUSP;
                 }
             }
             s2 = sag3(tp, f, h, b, &fin);
-            if (!cp_isfinite(s2) || !fin) {
+            if (lines && (!cp_isfinite(s2) || !fin)) {
                 return CP_ERR_NUMERIC;
             }
             smax = s2 > smax ? s2 : smax;
@@ -431,170 +436,116 @@ static int validate(const struct toolpath_cfg *cfg)
     return err;
 }
 
-static int init_lines(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
+/* CIRCLES mode, every node of the grid (gsteps steps, at least 1): both bounding lines
+ * regular; at each circle (node c (link + 1)) its points regular, and the step count
+ * its exact sagitta needs (*worst). */
+static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol, uint32_t *worst)
 {
-    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
-    cp_real sag = CP_R(0.0);
-    uint32_t steps = cfg->steps ? cfg->steps : 16u;
-    int round, err;
-    for (round = 0; round <= WALK_MAX_ROUNDS; round++) {
-        uint32_t m = (panels + steps - 1u) / steps;
-        if (m < 1u) {
-            m = 1u;
-        }
-        if (m > CP_MAX_SUBSTEPS) {
-            return CP_ERR_TOL;
-        }
-        tp->steps = (uint16_t)steps;
-        tp->substeps = cfg->substeps ? cfg->substeps : (uint16_t)m;
-        tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * tp->steps * tp->substeps);
-        err = walk_lines(tp, &sag);
-        if (err != CP_OK) {
-            return err;
-        }
-        if (cfg->steps != 0u || sag <= SAG_MARGIN * cfg->tol) {
-            break;
-        }
-        if (round == WALK_MAX_ROUNDS) {
-            return CP_ERR_TOL;
-        }
-        /* sagitta ~ h^2: scale the step count, rounding up, with 5% headroom */
-        {
-            cp_real want = (cp_real)steps * cp_sqrt(sag / (SAG_MARGIN * cfg->tol)) * CP_R(1.05);
-            if (want > (cp_real)CP_MAX_STEPS) {
-                if (steps == CP_MAX_STEPS) {
-                    return CP_ERR_TOL;
-                }
-                want = (cp_real)CP_MAX_STEPS;
-            }
-            steps = (uint32_t)cp_ceil(want);
-        }
-    }
-    /* link arcs: regularity always, count from the tolerance unless given */
-    err = lines_link(tp, tol);
-    if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != TOOLPATH_LINK_AUTO)) {
-        return err;
-    }
-    if (cfg->link != TOOLPATH_LINK_AUTO) {
-        tp->link = tp->n > 1u ? cfg->link : 0u;
-    }
-    return CP_OK;
-}
-
-/* Max midpoint sagitta of the link moves of CIRCLES mode: both bounding lines
- * (labels (aa, ba) and (ab, bb)), every grid step, midpoints on the doubled grid. */
-static CP_NOINLINE cp_real circles_link_sag(const struct toolpath *tp, uint32_t gsteps)
-{
-    struct quad q2;
-    struct canal_jet j;
-    struct canal_frame f[3];
-    cp_real lam[3], smax = CP_R(0.0);
-    uint32_t i, m = tp->substeps;
-    quad_reset(&tp->surf, &q2, &j);
-    canal_frame(&j, &f[0]);
-    lam[0] = q2.lam;
-    for (i = 0; i < gsteps; i++) {
-        uint32_t side, k;
-        /* m panels of width hp per half grid step, on the hp/2 half-node grid */
-        for (k = 1; k < 3u; k++) {
-            quad_march(tp, &q2, 4u * m * i + 2u * m * (k - 1u), m, 1, tp->hp * CP_R(0.5), &j);
-            canal_frame(&j, &f[k]);
-            lam[k] = q2.lam;
-        }
-        for (side = 0; side < 2u; side++) {
-            cp_real u = side ? tp->u1 : tp->u0, h[3], b[3], s2;
-            int fin;
-            for (k = 0; k < 3u; k++) {
-                bound_label(tp, u, &f[k], lam[k], &h[k], &b[k]);
-            }
-            s2 = sag3(tp, f, h, b, &fin);
-            smax = s2 > smax ? s2 : smax;
-        }
-        f[0] = f[2];
-        lam[0] = lam[2];
-    }
-    return smax;
-}
-
-/* CIRCLES mode: n circles at nodes c (link + 1), c = 0..n-1; the grid has
- * (n - 1)(link + 1) steps (at least 1). */
-static int init_circles(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
-{
-    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
     cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
-    uint32_t gsteps, m, c, i, worst = 1u, link;
+    uint32_t m = tp->substeps, c, i;
     struct quad q;
     struct canal_jet j;
     struct canal_frame f;
     cp_real aa, ba, ab, bb;
-    int round;
-    link = cfg->link == TOOLPATH_LINK_AUTO ? 0u : cfg->link;
+    *worst = 1u;
+    quad_reset(&tp->surf, &q, &j);
+    canal_frame(&j, &f);
+    for (i = 0; i <= gsteps; i++) {
+        if (i > 0u) {
+            quad_march(tp, &q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
+            canal_frame(&j, &f);
+        }
+        bound_label(tp, tp->u0, &f, q.lam, &aa, &ba);
+        bound_label(tp, tp->u1, &f, q.lam, &ab, &bb);
+        if (!regular(tp, &f, aa, ba) || !regular(tp, &f, ab, bb)) {
+            return CP_ERR_CUSP;
+        }
+        if (i % (tp->link + 1u) == 0u) {
+            /* a circle: its points, and the step count from its exact sagitta */
+            uint32_t s =
+                arc_segments((f.r - off) / cp_sqrt(f.q2), label_gap(&f, aa, ba, ab, bb), tol);
+            *worst = s > *worst ? s : *worst;
+            for (c = 0; c <= 16u; c++) {
+                cp_real hh, b2;
+                label_between(&f, aa, ba, ab, bb, (cp_real)c / CP_R(16.0), &hh, &b2);
+                if (!regular(tp, &f, hh, b2)) {
+                    return CP_ERR_CUSP;
+                }
+            }
+        }
+    }
+    return CP_OK;
+}
+
+/* Fix the grid of either mode, refining g from the measured sagitta (at most
+ * WALK_MAX_ROUNDS times), then the counts the stream needs. g is what the rounds refine:
+ * LINES the steps per line (grid = output steps, gsteps = g), CIRCLES link + 1 (gsteps =
+ * (n - 1) g link steps between the first and the last circle, at least 1). Each round
+ * derives the panels per grid step from `panels` and walks the grid (walk_sag; CIRCLES
+ * also circles_nodes). LINES then derives the link (lines_link), CIRCLES the steps per
+ * circle (the worst circle sagitta). */
+static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
+{
+    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
+    cp_real sag = CP_R(0.0);
+    int lines = tp->mode == TOOLPATH_LINES;
+    int refine = lines ? cfg->steps == 0u : (tp->n > 1u && cfg->link == TOOLPATH_LINK_AUTO);
+    uint32_t g = lines ? (cfg->steps ? cfg->steps : 16u)
+                       : (cfg->link == TOOLPATH_LINK_AUTO ? 1u : cfg->link + 1u);
+    uint32_t gmax = lines ? CP_MAX_STEPS : CP_MAX_LINK + 1u, worst = 1u;
+    int round, err;
     for (round = 0; round <= WALK_MAX_ROUNDS; round++) {
-        gsteps = tp->n > 1u ? (uint32_t)(tp->n - 1u) * (link + 1u) : 1u;
+        uint32_t gsteps = lines ? g : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * g : 1u);
+        /* panels >= 1, so m >= 1 */
+        uint32_t m = cfg->substeps ? cfg->substeps : (panels + gsteps - 1u) / gsteps;
+        cp_real want;
         if (gsteps > CP_MAX_STEPS * 4u) {
             return CP_ERR_TOO_MANY;
-        }
-        m = (panels + gsteps - 1u) / gsteps;
-        m = m < 1u ? 1u : m;
-        if (cfg->substeps) {
-            m = cfg->substeps;
         }
         if (m > CP_MAX_SUBSTEPS) {
             return CP_ERR_TOL;
         }
         tp->substeps = (uint16_t)m;
-        tp->link = (uint16_t)link;
+        if (lines) {
+            tp->steps = (uint16_t)g;
+        } else {
+            tp->link = (uint16_t)(g - 1u);
+        }
         tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
-        /* walk every node: regularity of both bounding lines and of the circle
-         * points, sagitta of the link segments (midpoints on the doubled grid) */
-        quad_reset(&tp->surf, &q, &j);
-        canal_frame(&j, &f);
-        worst = 1u;
-        for (i = 0; i <= gsteps; i++) {
-            cp_real gap;
-            if (i > 0u) {
-                quad_march(tp, &q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
-                canal_frame(&j, &f);
-            }
-            bound_label(tp, tp->u0, &f, q.lam, &aa, &ba);
-            bound_label(tp, tp->u1, &f, q.lam, &ab, &bb);
-            if (!regular(tp, &f, aa, ba) || !regular(tp, &f, ab, bb)) {
-                return CP_ERR_CUSP;
-            }
-            if (i % (link + 1u) == 0u) {
-                /* a circle: its points, and the step count from its exact sagitta */
-                uint32_t s;
-                gap = label_gap(&f, aa, ba, ab, bb);
-                s = arc_segments((f.r - off) / cp_sqrt(f.q2), gap, tol);
-                worst = s > worst ? s : worst;
-                for (c = 0; c <= 16u; c++) {
-                    cp_real hh, b2;
-                    label_between(&f, aa, ba, ab, bb, (cp_real)c / CP_R(16.0), &hh, &b2);
-                    if (!regular(tp, &f, hh, b2)) {
-                        return CP_ERR_CUSP;
-                    }
-                }
-            }
+        err = lines ? CP_OK : circles_nodes(tp, gsteps, tol, &worst);
+        if (err == CP_OK && (lines || refine)) {
+            err = walk_sag(tp, gsteps, &sag);
         }
-        /* link sagitta along the bounding lines: compare nodes with midpoints */
-        if (tp->n > 1u && cfg->link == TOOLPATH_LINK_AUTO) {
-            cp_real smax = circles_link_sag(tp, gsteps);
-            if (smax > SAG_MARGIN * tol) {
-                cp_real want;
-                if (round == WALK_MAX_ROUNDS) {
-                    return CP_ERR_TOL;
-                }
-                want = (cp_real)(link + 1u) * cp_sqrt(smax / (SAG_MARGIN * tol)) * CP_R(1.05);
-                link = (uint32_t)cp_ceil(want) - 1u;
-                if (link > CP_MAX_LINK) {
-                    return CP_ERR_TOL;
-                }
-                continue;
-            }
+        if (err != CP_OK) {
+            return err;
         }
-        break;
+        if (!refine || sag <= SAG_MARGIN * tol) {
+            break;
+        }
+        if (round == WALK_MAX_ROUNDS) {
+            return CP_ERR_TOL;
+        }
+        /* sagitta ~ (grid step)^2: scale g, rounding up, with 5% headroom; LINES
+         * tries CP_MAX_STEPS once before giving up */
+        want = (cp_real)g * cp_sqrt(sag / (SAG_MARGIN * tol)) * CP_R(1.05);
+        if (want > (cp_real)gmax) {
+            if (!lines || g == gmax) {
+                return CP_ERR_TOL;
+            }
+            want = (cp_real)gmax;
+        }
+        g = (uint32_t)cp_ceil(want);
     }
-    if (cfg->steps != 0u) {
+    if (lines) {
+        /* link arcs: regularity always, count from the tolerance unless given */
+        err = lines_link(tp, tol);
+        if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != TOOLPATH_LINK_AUTO)) {
+            return err;
+        }
+        if (cfg->link != TOOLPATH_LINK_AUTO) {
+            tp->link = tp->n > 1u ? cfg->link : 0u;
+        }
+    } else if (cfg->steps != 0u) {
         tp->steps = cfg->steps;
     } else {
         if (worst > CP_MAX_STEPS) {
@@ -629,30 +580,23 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     tp->output = cfg->output;
     tp->labels = cfg->labels;
     tp->span = cfg->span;
-    tp->lab_line = -1;
-    tp->lab2_line = -1;
     tp->n = cfg->n;
     tp->u0 = cfg->u0;
     tp->u1 = cfg->u1;
     tp->tool_r = cfg->tool_r;
-    canal_jet(&tp->surf, tp->surf.t0, &j);
-    canal_frame(&j, &f);
+    canal_jet1(&tp->surf, tp->surf.t0, &j);
+    canal_frame_pt(&j, &f);
     tp->q0 = cp_sqrt(f.q2);
     tp->r0 = j.r;
     tp->lab_d = tp->n > 1u ? CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->n - 1u) : CP_R(0.0);
-    tp->st_line = -1;
     panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
-    if (tp->mode == TOOLPATH_LINES) {
-        err = init_lines(tp, cfg, panels);
-    } else {
-        err = init_circles(tp, cfg, panels);
-    }
+    err = init_grid(tp, cfg, panels);
     if (err != CP_OK) {
         return err;
     }
     tp->count = mul_sat((uint32_t)tp->n, (uint32_t)tp->steps + 1u) +
                 mul_sat((uint32_t)tp->n - 1u, tp->link);
-    return toolpath_seek(tp, 0u);
+    return toolpath_seek(tp, 0u); /* also clears the label caches */
 }
 
 uint32_t toolpath_count(const struct toolpath *tp)
@@ -660,27 +604,38 @@ uint32_t toolpath_count(const struct toolpath *tp)
     return tp->count;
 }
 
-/* Bring the quadrature to half-node `target` along the deterministic route of the
- * stream: LINES even lines march forward from 0, odd lines forward to the end and
- * then backward; CIRCLES march forward. `back` selects the backward route. */
-static void quad_goto(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
+/* Bring the quadrature to half-node `target` and leave the jet there in *j. One output
+ * step on from the current node (forward, or backward with `back`) marches that step;
+ * at the node, only the jet; from anywhere else (or no state: node 0xFFFFFFFF is odd,
+ * and targets are even, so it matches no case above) along the deterministic route of
+ * the stream from half-node 0: forward, or for `back` (LINES odd lines) forward to the
+ * last node of a line and then backward. Lambda is snapped to its exact value 0 when a
+ * backward march reaches t0 (*j is then already the jet at t0). */
+static CP_NOINLINE void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
 {
     struct quad q;
-    uint32_t m = tp->substeps;
-    uint32_t last =
-        2u * m *
-        (tp->mode == TOOLPATH_LINES ? (uint32_t)tp->steps
-                                    : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * (tp->link + 1u) : 1u));
-    quad_reset(&tp->surf, &q, j);
-    if (!back) {
-        quad_march(tp, &q, 0u, target / 2u, 1, tp->hp, j);
+    uint32_t m2 = 2u * tp->substeps, from = tp->node;
+    if (from == target) {
+        canal_jet(&tp->surf, t_at(tp, target, tp->hp), j);
+        return;
+    }
+    if (back ? from == target + m2 : target == from + m2) {
+        q.lam = tp->lam;
+        q.comp = tp->comp;
+        q.g = tp->g_node;
+        quad_march(tp, &q, from, m2 / 2u, !back, tp->hp, j);
     } else {
-        quad_march(tp, &q, 0u, last / 2u, 1, tp->hp, j);
-        quad_march(tp, &q, last, (last - target) / 2u, 0, tp->hp, j);
-        if (target == 0u) {
-            q.lam = CP_R(0.0); /* snap to the exact Lambda(t0); *j is already the jet at t0 */
-            q.comp = CP_R(0.0);
+        quad_reset(&tp->surf, &q, j);
+        from = 0u;
+        if (back) {
+            from = m2 * tp->steps;
+            quad_march(tp, &q, 0u, from / 2u, 1, tp->hp, j);
         }
+        quad_march(tp, &q, from, (back ? from - target : target - from) / 2u, !back, tp->hp, j);
+    }
+    if (back && target == 0u) {
+        q.lam = CP_R(0.0); /* snap to the exact Lambda(t0) */
+        q.comp = CP_R(0.0);
     }
     tp->node = target;
     tp->lam = q.lam;
@@ -723,39 +678,6 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
     return CP_OK;
 }
 
-/* Advance the quadrature from its node to half-node `target` (one output step,
- * either direction), or position it from scratch if it is elsewhere. */
-static void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
-{
-    struct quad q;
-    uint32_t m = tp->substeps;
-    if (tp->node != 0xFFFFFFFFu && target == tp->node + 2u * m && !back) {
-        q.lam = tp->lam;
-        q.comp = tp->comp;
-        q.g = tp->g_node;
-        quad_march(tp, &q, tp->node, m, 1, tp->hp, j);
-    } else if (tp->node != 0xFFFFFFFFu && back && tp->node == target + 2u * m) {
-        q.lam = tp->lam;
-        q.comp = tp->comp;
-        q.g = tp->g_node;
-        quad_march(tp, &q, tp->node, m, 0, tp->hp, j);
-        if (target == 0u) {
-            q.lam = CP_R(0.0); /* snap to the exact Lambda(t0); *j is already the jet at t0 */
-            q.comp = CP_R(0.0);
-        }
-    } else if (tp->node == target && tp->node != 0xFFFFFFFFu) {
-        canal_jet(&tp->surf, t_at(tp, target, tp->hp), j);
-        return;
-    } else {
-        quad_goto(tp, target, back, j);
-        return;
-    }
-    tp->node = target;
-    tp->lam = q.lam;
-    tp->comp = q.comp;
-    tp->g_node = q.g;
-}
-
 /* Copy a computed point out, refusing a non-finite one. */
 static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int line,
                                    uint32_t index, struct toolpath_pt *pt)
@@ -781,7 +703,7 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
  * second half (stage2), so no point pays a whole sincos. A point whose cache is not
  * ready (impossible after toolpath_seek, which makes both labels; kept as a guard)
  * makes what it needs itself. LAMBDA labels need no sincos: made at once. */
-static void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r)
+static CP_NOINLINE void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r)
 {
     uint32_t nx = jl + 1u;
     if (tp->lab_line != (int32_t)jl) {
@@ -814,114 +736,78 @@ static void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r)
     }
 }
 
-static int next_lines(struct toolpath *tp, struct toolpath_pt *pt)
+/* One point of either mode. Point k is position r of block jl (a line or circle of
+ * steps + 1 points in travel order, then its link points r - steps = 1..link). Odd
+ * blocks run backwards. A link point sits at the end of its line (LINES: the node of
+ * index i, as its last point) or on the bounding line between two circles (CIRCLES:
+ * the link's own node, forward). */
+int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
 {
     uint32_t block = (uint32_t)tp->steps + 1u + tp->link;
-    uint32_t jl = tp->k / block, r = tp->k % block, i, a;
-    uint32_t m2 = 2u * tp->substeps;
-    int back = (int)(jl & 1u);
+    uint32_t jl = tp->k / block, r = tp->k % block;
+    uint32_t rr = r <= tp->steps ? r : tp->steps, i, a;
+    int back = (int)(jl & 1u), lines = tp->mode == TOOLPATH_LINES, err;
     struct canal_jet j;
     struct canal_frame f;
     struct canal_point cp;
-    cp_real al, bl;
-    if (r <= tp->steps) {
-        cp_real t;
-        i = back ? tp->steps - r : r;
-        a = i * m2;
+    cp_real t, hh, b2;
+    if (tp->k >= tp->count) {
+        return CP_ERR_DONE;
+    }
+    i = back ? tp->steps - rr : rr;
+    if (!lines) {
+        a = (jl * (tp->link + 1u) + (r - rr)) * (2u * tp->substeps);
+        t = t_at(tp, a, tp->hp);
+        quad_to(tp, a, 0, &j);
+    } else {
+        a = i * (2u * tp->substeps);
         t = t_at(tp, a, tp->hp);
         if (tp->surf.kappa_const) {
             /* constant curvature: exact Lambda, no quadrature state to march */
             canal_jet1(&tp->surf, t, &j);
-            canal_frame_pt(&j, &f);
             tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
             tp->node = 0xFFFFFFFFu;
         } else {
             if (r == 0u && !back) {
-                /* an even line starts at t0: exact Lambda = 0 */
-                struct quad q;
-                quad_reset(&tp->surf, &q, &j);
-                tp->node = 0u;
-                tp->lam = q.lam;
-                tp->comp = q.comp;
-                tp->g_node = q.g;
-            } else {
-                /* an odd line starts (r = 0) where the previous even line ended */
-                quad_to(tp, a, r == 0u ? 0 : back, &j);
+                tp->node = 0xFFFFFFFFu; /* an even line starts at t0 afresh: Lambda = 0 */
             }
-            canal_frame_pt(&j, &f);
-        }
-        if (tp->lab_line != (int32_t)jl || r + 1u >= tp->steps) {
-            line_labels(tp, jl, r); /* a line's first and last two points only */
-        }
-        al = tp->lab_a;
-        bl = tp->lab_b;
-        emit_inline(tp, &f, al + tp->lam * bl, bl, &cp); /* the streaming hot path */
-        return finish(&cp, t, (int)jl, i, pt);
-    }
-    /* link point r - steps (1..link) after line jl, at its end node, between the labels
-     * of lines jl and jl + 1 (both cached: the next one was made at the line's last point) */
-    {
-        cp_real hh, b2, t;
-        uint32_t kk = r - tp->steps;
-        i = back ? 0u : tp->steps;
-        a = i * m2;
-        t = t_at(tp, a, tp->hp);
-        if (tp->surf.kappa_const) {
-            canal_jet1(&tp->surf, t, &j);
-            tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
-            tp->node = 0xFFFFFFFFu;
-        } else {
+            /* (an odd line starts, r = 0, at the node where the previous line ended, or
+             * after a seek from scratch: forward to it, then no backward panel) */
             quad_to(tp, a, back, &j);
         }
-        canal_frame_pt(&j, &f);
-        line_labels(tp, jl, r);
-        label_lerp(&f, tp->lab_a + tp->lam * tp->lab_b, tp->lab_b,
-                   tp->lab2_a + tp->lam * tp->lab2_b, tp->lab2_b,
-                   (cp_real)kk / (cp_real)(tp->link + 1u), &hh, &b2);
-        emit_point(tp, &f, hh, b2, &cp);
-        return finish(&cp, t, -1, kk, pt);
     }
-}
-
-static int next_circles(struct toolpath *tp, struct toolpath_pt *pt)
-{
-    uint32_t block = (uint32_t)tp->steps + 1u + tp->link;
-    uint32_t c = tp->k / block, r = tp->k % block, a;
-    uint32_t m2 = 2u * tp->substeps;
-    int back = (int)(c & 1u);
-    struct canal_jet j;
-    struct canal_frame f;
-    struct canal_point cp;
-    cp_real aa, ba, ab, bb, hh, b2;
-    if (r <= tp->steps) {
-        uint32_t i = back ? tp->steps - r : r;
-        a = c * (tp->link + 1u) * m2;
-        quad_to(tp, a, 0, &j);
-        canal_frame_pt(&j, &f);
+    canal_frame_pt(&j, &f);
+    if (lines) {
+        if (tp->lab_line != (int32_t)jl || r + 1u >= tp->steps) {
+            line_labels(tp, jl, r); /* a line's first and last two points, its links */
+        }
+        hh = tp->lab_a + tp->lam * tp->lab_b; /* the streaming hot path */
+        b2 = tp->lab_b;
+        if (r > tp->steps) {
+            /* link point: between the labels of lines jl and jl + 1 (both cached: the
+             * next one was made at the line's last point) */
+            cp_real hl, bl; /* (not hh, b2 themselves: their address would cost the hot path) */
+            label_lerp(&f, hh, b2, tp->lab2_a + tp->lam * tp->lab2_b, tp->lab2_b,
+                       (cp_real)(r - tp->steps) / (cp_real)(tp->link + 1u), &hl, &bl);
+            hh = hl;
+            b2 = bl;
+        }
+    } else {
+        cp_real aa, ba, ab, bb;
         bound_label(tp, tp->u0, &f, tp->lam, &aa, &ba);
         bound_label(tp, tp->u1, &f, tp->lam, &ab, &bb);
-        label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &hh, &b2);
-        emit_point(tp, &f, hh, b2, &cp);
-        return finish(&cp, t_at(tp, a, tp->hp), (int)c, i, pt);
+        /* link point: along the bounding line the circle ended on (it makes both bound
+         * labels too, still less work than a circle point) */
+        hh = back ? aa : ab;
+        b2 = back ? ba : bb;
+        if (r <= tp->steps) {
+            label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &aa, &ba);
+            hh = aa;
+            b2 = ba;
+        }
     }
-    {
-        uint32_t kk = r - tp->steps;
-        a = (c * (tp->link + 1u) + kk) * m2;
-        quad_to(tp, a, 0, &j);
-        canal_frame_pt(&j, &f);
-        bound_label(tp, back ? tp->u0 : tp->u1, &f, tp->lam, &aa, &ba);
-        emit_point(tp, &f, aa, ba, &cp);
-        return finish(&cp, t_at(tp, a, tp->hp), -1, kk, pt);
-    }
-}
-
-int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
-{
-    int err;
-    if (tp->k >= tp->count) {
-        return CP_ERR_DONE;
-    }
-    err = tp->mode == TOOLPATH_LINES ? next_lines(tp, pt) : next_circles(tp, pt);
+    emit_inline(tp, &f, hh, b2, &cp);
+    err = finish(&cp, t, r > tp->steps ? -1 : (int)jl, r > tp->steps ? r - tp->steps : i, pt);
     if (err == CP_OK) {
         tp->k++;
     }
