@@ -11,10 +11,10 @@
 static const uint8_t curve_nparams[4] = {4u, 5u, 6u, 8u};
 static const uint8_t radius_nparams[4] = {1u, 2u, 3u, 4u};
 
-/* Samples of |C'|^2 used to bracket the minimum speed of a Bezier, and the
- * golden-section refinements inside the bracket (fixed counts). */
+/* Grid steps of |C'|^2 used to bracket the minimum speed of a Bezier, and the zoom
+ * rounds inside the bracket (fixed counts; bezier_min_speed). */
 #define BEZIER_SPEED_SAMPLES 64
-#define BEZIER_SPEED_REFINE 40
+#define BEZIER_SPEED_ROUNDS 10
 
 /* Does [lo, hi] contain off + 2 pi m for some integer m? */
 static int contains_phase(cp_real lo, cp_real hi, cp_real off)
@@ -134,49 +134,35 @@ static cp_real bezier_speed2(const struct canal *p, cp_real s)
     return j.dx * j.dx + j.dy * j.dy;
 }
 
-/* Minimum |C'| of a Bezier over [0, 1]: sample, then golden-section refinement
- * in the bracket around the smallest sample (|C'|^2 is a quartic: at most two
- * local minima, each wider than the sample spacing unless it is a near-cusp,
- * which the refinement resolves). Fixed counts. */
+/* Minimum |C'| of a Bezier over [0, 1]: sample on a grid of step w = 1/64, then zoom:
+ * each round samples the bracket [s_b - w, s_b + w] around the best sample s_b so far
+ * in steps of w/4 (the 7 interior points), then w /= 4. |C'|^2 is a quartic: at most
+ * two local minima, each wider than the grid spacing unless it is a near-cusp, which
+ * the zoom resolves: once the bracket holds one minimum, it keeps holding it (the best
+ * sample is within one step of it), so after BEZIER_SPEED_ROUNDS rounds s_b is within
+ * 4^-10 / 64 = 1.5e-8 of it - below the float spacing of s in [1/2, 1]. Samples are
+ * clamped to [0, 1] (the polynomial beyond the ends is not the curve). Fixed counts:
+ * 1 + 64 + 7 BEZIER_SPEED_ROUNDS evaluations. */
 static cp_real bezier_min_speed(const struct canal *p)
 {
+    cp_real w = CP_R(1.0) / (cp_real)BEZIER_SPEED_SAMPLES, lo = CP_R(0.0), sb = CP_R(0.0);
     cp_real best = bezier_speed2(p, CP_R(0.0));
-    cp_real a, b, x1, x2, f1, f2, e[2], x[2], fx[2];
-    const cp_real gr = CP_R(0.6180339887498949);
-    int i, ibest = 0;
-    for (i = 1; i <= BEZIER_SPEED_SAMPLES; i++) {
-        cp_real v = bezier_speed2(p, (cp_real)i / (cp_real)BEZIER_SPEED_SAMPLES);
-        if (v < best) {
-            best = v;
-            ibest = i;
+    unsigned r, i, n = BEZIER_SPEED_SAMPLES;
+    for (r = 0; r <= BEZIER_SPEED_ROUNDS; r++) {
+        for (i = 1; i <= n; i++) {
+            cp_real s = lo + (cp_real)i * w, v;
+            s = s < CP_R(0.0) ? CP_R(0.0) : s;
+            s = s > CP_R(1.0) ? CP_R(1.0) : s;
+            v = bezier_speed2(p, s);
+            if (v < best) {
+                best = v;
+                sb = s;
+            }
         }
+        lo = sb - w;
+        w *= CP_R(0.25);
+        n = 7u;
     }
-    a = (cp_real)(ibest > 0 ? ibest - 1 : 0) / (cp_real)BEZIER_SPEED_SAMPLES;
-    b = (cp_real)(ibest < BEZIER_SPEED_SAMPLES ? ibest + 1 : BEZIER_SPEED_SAMPLES) /
-        (cp_real)BEZIER_SPEED_SAMPLES;
-    x1 = b - gr * (b - a);
-    x2 = a + gr * (b - a);
-    f1 = bezier_speed2(p, x1);
-    f2 = bezier_speed2(p, x2);
-    e[0] = a;
-    e[1] = b;
-    x[0] = x1;
-    x[1] = x2;
-    fx[0] = f1;
-    fx[1] = f2;
-    for (i = 0; i < BEZIER_SPEED_REFINE; i++) {
-        /* the bracket end on the larger probe's side (s) moves onto it, its probe takes
-         * the other one's place, and a new probe goes in at e[s] - gr (e[s] - e[o]): for
-         * s = 0 that is a + gr (b - a), the same float value (negation is exact) */
-        int s = fx[0] < fx[1], o = 1 - s;
-        e[s] = x[s];
-        x[s] = x[o];
-        fx[s] = fx[o];
-        x[o] = e[s] - gr * (e[s] - e[o]);
-        fx[o] = bezier_speed2(p, x[o]);
-    }
-    best = fx[0] < best ? fx[0] : best;
-    best = fx[1] < best ? fx[1] : best;
     return cp_sqrt(best);
 }
 
@@ -250,15 +236,15 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
         break;
     }
     default: { /* CANAL_BEZIER */
-        cp_real xmin = c->cp[0], xmax = c->cp[0], ymin = c->cp[1], ymax = c->cp[1];
+        /* bounding box of the control points: bx = (xmin, xmax), by = (ymin, ymax) */
+        cp_real bx[2], by[2];
+        bx[0] = bx[1] = c->cp[0];
+        by[0] = by[1] = c->cp[1];
         for (i = 1; i < 4u; i++) {
-            cp_real x = c->cp[2u * i], y = c->cp[2u * i + 1u];
-            xmin = x < xmin ? x : xmin;
-            xmax = x > xmax ? x : xmax;
-            ymin = y < ymin ? y : ymin;
-            ymax = y > ymax ? y : ymax;
+            widen(bx, c->cp[2u * i]);
+            widen(by, c->cp[2u * i + 1u]);
         }
-        size = (xmax - xmin) > (ymax - ymin) ? (xmax - xmin) : (ymax - ymin);
+        size = (bx[1] - bx[0]) > (by[1] - by[0]) ? (bx[1] - bx[0]) : (by[1] - by[0]);
         c->t0 = CP_R(0.0);
         c->t1 = CP_R(1.0);
         break; /* cmin below, once the fields the jet reads are set */

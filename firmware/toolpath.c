@@ -23,9 +23,8 @@
 #include "raster.h"
 
 #define RICH_COARSE 64u      /* Richardson estimate: coarse panel count over [t0, t1] */
-#define WALK_MAX_ROUNDS 4    /* step-count refinements from the measured sagitta */
 #define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
-#define LINK_PROBES 16u      /* regularity probes along each link arc */
+#define LINK_PROBES 16u      /* probe spacing 1/16 along each link arc and circle */
 #define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
 
 struct quad {
@@ -101,27 +100,22 @@ static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct
     }
 }
 
-/* The same, out of line for the init walks (flash). */
-static void emit_point(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b,
-                       struct canal_point *out)
-{
-    emit_inline(tp, f, h, b, out);
-}
-
 /* Midpoint sagitta |p1 - (p0 + p2)/2| of the points emitted for labels (h[k], b[k]) at
- * frames f[k], k = 0, 1, 2; *fin = 0 if the last point is not finite. */
+ * frames f[k], k = 0, 1, 2; *fin = 0 if the last point is not finite. (One emit in a
+ * loop: the init walks' only copy of the point body.) */
 static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, const cp_real *h,
                     const cp_real *b, int *fin)
 {
-    struct canal_point p0, p1, p2;
+    struct canal_point p[3];
     cp_real dx, dy, dz;
-    emit_point(tp, &f[0], h[0], b[0], &p0);
-    emit_point(tp, &f[1], h[1], b[1], &p1);
-    emit_point(tp, &f[2], h[2], b[2], &p2);
-    dx = p1.m.x - CP_R(0.5) * (p0.m.x + p2.m.x);
-    dy = p1.m.y - CP_R(0.5) * (p0.m.y + p2.m.y);
-    dz = p1.m.z - CP_R(0.5) * (p0.m.z + p2.m.z);
-    *fin = cp_isfinite(p2.m.x + p2.m.y + p2.m.z);
+    unsigned k;
+    for (k = 0; k < 3u; k++) {
+        emit_inline(tp, &f[k], h[k], b[k], &p[k]);
+    }
+    dx = p[1].m.x - CP_R(0.5) * (p[0].m.x + p[2].m.x);
+    dy = p[1].m.y - CP_R(0.5) * (p[0].m.y + p[2].m.y);
+    dz = p[1].m.z - CP_R(0.5) * (p[0].m.z + p[2].m.z);
+    *fin = cp_isfinite(p[2].m.x + p[2].m.y + p[2].m.z);
     return cp_sqrt(dx * dx + dy * dy + dz * dz);
 }
 
@@ -229,7 +223,7 @@ static void label_between(const struct canal_frame *f, cp_real ha, cp_real ba, c
 /* Label at fraction sig of the way from label (ha, ba) to (hb, bb) at frame f, by
  * normalised linear interpolation of the half-angle directions d = (h/q, b): no
  * trigonometry (a link move is a few points; its chord count allows for the up to
- * 2 tan(phi/2)/phi wider middle steps, phi = the half-angle gap; lines_link). */
+ * 2 tan(phi/2)/phi wider middle steps, phi = the half-angle gap; arc_probe). */
 static void label_lerp(const struct canal_frame *f, cp_real ha, cp_real ba, cp_real hb, cp_real bb,
                        cp_real sig, cp_real *h, cp_real *b)
 {
@@ -307,11 +301,6 @@ static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
     return (uint32_t)cp_ceil(p);
 }
 
-static uint32_t mul_sat(uint32_t a, uint32_t b)
-{
-    return (b != 0u && a > 0xFFFFFFFFu / b) ? 0xFFFFFFFFu : a * b;
-}
-
 /* Walk the grid once at twice its resolution (gsteps steps of 2 substeps panels, each
  * split in two: the same panel width hp as the real run, so this Lambda is at least as
  * accurate) and measure the max midpoint sagitta of the emitted positions along the
@@ -367,16 +356,48 @@ static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_r
     return CP_OK;
 }
 
+/* The arc from label (ha, ba) to label (hb, bb) at frame f that a LINES link (lerp = 1:
+ * label_lerp points) or a CIRCLES circle (lerp = 0: label_between points) follows: raise
+ * *worst to its segment count for tol (a lerp's middle steps are wider by 2 tan(phi/2)/phi,
+ * phi = gap/2: counted in), and probe that it stays on the regular sheet at sig = k /
+ * LINK_PROBES: a circle k = 0..LINK_PROBES, a link only its interior k = 1..LINK_PROBES - 1
+ * (its ends are its lines' nodes, which walk_sag checked). CP_ERR_CUSP on a failed probe,
+ * else CP_OK. */
+static CP_NOINLINE int arc_probe(const struct toolpath *tp, const struct canal_frame *f,
+                                 cp_real ha, cp_real ba, cp_real hb, cp_real bb, cp_real tol,
+                                 int lerp, uint32_t *worst)
+{
+    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    cp_real gap = label_gap(f, ha, ba, hb, bb), widen = CP_R(1.0), sn, cs;
+    uint32_t segs, k;
+    if (lerp) {
+        cp_sincos(CP_R(0.25) * gap, &sn, &cs);
+        widen = gap > CP_R(1e-6) ? CP_R(4.0) * sn / (cs * gap) : CP_R(1.0);
+    }
+    segs = arc_segments((f->r - off) / cp_sqrt(f->q2), gap * widen, tol);
+    *worst = segs > *worst ? segs : *worst;
+    for (k = (uint32_t)lerp; k <= LINK_PROBES - (uint32_t)lerp; k++) {
+        cp_real hh, b2, sig = (cp_real)k / (cp_real)LINK_PROBES;
+        if (lerp) {
+            label_lerp(f, ha, ba, hb, bb, sig, &hh, &b2);
+        } else {
+            label_between(f, ha, ba, hb, bb, sig, &hh, &b2);
+        }
+        if (!regular(tp, f, hh, b2)) {
+            return CP_ERR_CUSP;
+        }
+    }
+    return CP_OK;
+}
+
 /* Derive the link count of LINES mode: the largest angle gap between neighbouring
- * lines at t0 and t1 on circles of radius (R - off)/q. */
+ * lines at t0 and t1 on circles of radius (R - off)/q (arc_probe). */
 static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
 {
     struct quad q;
     struct canal_jet j;
     struct canal_frame f;
-    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
-    cp_real gap, widen, sn, cs;
-    uint32_t end, jl, segs, worst = 1u, k;
+    uint32_t end, jl, worst = 1u;
     if (tp->n <= 1u) {
         tp->link = 0u;
         return CP_OK;
@@ -388,24 +409,12 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
         }
         canal_frame(&j, &f);
         for (jl = 0; jl + 1u < tp->n; jl++) {
-            cp_real aa, ba, ab, bb, rad;
+            cp_real aa, ba, ab, bb;
             line_label(tp, jl, &aa, &ba);
             line_label(tp, jl + 1u, &ab, &bb);
-            rad = (f.r - off) / cp_sqrt(f.q2);
-            gap = label_gap(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb);
-            /* label_lerp's middle steps are wider by 2 tan(phi/2)/phi, phi = gap/2 */
-            cp_sincos(CP_R(0.25) * gap, &sn, &cs);
-            widen = gap > CP_R(1e-6) ? CP_R(4.0) * sn / (cs * gap) : CP_R(1.0);
-            segs = arc_segments(rad, gap * widen, tol);
-            worst = segs > worst ? segs : worst;
-            /* the link arc itself must stay on the regular sheet */
-            for (k = 1; k < LINK_PROBES; k++) {
-                cp_real hh, b2;
-                label_lerp(&f, aa + q.lam * ba, ba, ab + q.lam * bb, bb,
-                           (cp_real)k / (cp_real)LINK_PROBES, &hh, &b2);
-                if (!regular(tp, &f, hh, b2)) {
-                    return CP_ERR_CUSP;
-                }
+            if (arc_probe(tp, &f, aa + q.lam * ba, ba, ab + q.lam * bb, bb, tol, 1, &worst) !=
+                CP_OK) {
+                return CP_ERR_CUSP;
             }
         }
     }
@@ -441,8 +450,7 @@ static int validate(const struct toolpath_cfg *cfg)
  * its exact sagitta needs (*worst). */
 static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol, uint32_t *worst)
 {
-    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
-    uint32_t m = tp->substeps, c, i;
+    uint32_t m = tp->substeps, i;
     struct quad q;
     struct canal_jet j;
     struct canal_frame f;
@@ -460,45 +468,47 @@ static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol
         if (!regular(tp, &f, aa, ba) || !regular(tp, &f, ab, bb)) {
             return CP_ERR_CUSP;
         }
-        if (i % (tp->link + 1u) == 0u) {
-            /* a circle: its points, and the step count from its exact sagitta */
-            uint32_t s =
-                arc_segments((f.r - off) / cp_sqrt(f.q2), label_gap(&f, aa, ba, ab, bb), tol);
-            *worst = s > *worst ? s : *worst;
-            for (c = 0; c <= 16u; c++) {
-                cp_real hh, b2;
-                label_between(&f, aa, ba, ab, bb, (cp_real)c / CP_R(16.0), &hh, &b2);
-                if (!regular(tp, &f, hh, b2)) {
-                    return CP_ERR_CUSP;
-                }
-            }
+        /* a circle: its points, and the step count from its exact sagitta */
+        if (i % (tp->link + 1u) == 0u &&
+            arc_probe(tp, &f, aa, ba, ab, bb, tol, 0, worst) != CP_OK) {
+            return CP_ERR_CUSP;
         }
     }
     return CP_OK;
 }
 
-/* Fix the grid of either mode, refining g from the measured sagitta (at most
- * WALK_MAX_ROUNDS times), then the counts the stream needs. g is what the rounds refine:
- * LINES the steps per line (grid = output steps, gsteps = g), CIRCLES link + 1 (gsteps =
- * (n - 1) g link steps between the first and the last circle, at least 1). Each round
- * derives the panels per grid step from `panels` and walks the grid (walk_sag; CIRCLES
- * also circles_nodes). LINES then derives the link (lines_link), CIRCLES the steps per
- * circle (the worst circle sagitta). */
+/* The tolerance search of the grid (raster_fit), by mode: LINES refines the steps (from
+ * 16; an estimate above CP_MAX_STEPS is tried at CP_MAX_STEPS once), CIRCLES link + 1
+ * (from 1; CP_ERR_TOL above CP_MAX_LINK + 1). Both verify a count whose measured midpoint
+ * sagitta is <= SAG_MARGIN tol and aim the h^2 estimate at the same. */
+static const struct raster_rule canal_rule[2] = {{SAG_MARGIN, SAG_MARGIN, 16u, 0u, 31u, 1u},
+                                                 {SAG_MARGIN, SAG_MARGIN, 16u, 0u, 31u, 0u}};
+
+/* Fix the grid of either mode, refining g by the search of raster_fit (canal_rule; at most
+ * RASTER_FIT_ROUNDS + 1 walks), then the counts the stream needs. g is what the rounds
+ * refine: LINES the steps per line (grid = output steps, gsteps = g), CIRCLES link + 1
+ * (gsteps = (n - 1) g link steps between the first and the last circle, at least 1; a
+ * single circle keeps its given link). Each round derives the panels per grid step from
+ * `panels` and walks the grid (walk_sag; CIRCLES also circles_nodes, and walk_sag only
+ * when the link is derived). LINES then derives the link (lines_link), CIRCLES the steps
+ * per circle (the worst circle sagitta). */
 static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
 {
-    cp_real tol = cfg->tol > CP_R(0.0) ? cfg->tol : CP_R(1e-3);
-    cp_real sag = CP_R(0.0);
+    struct raster_fit fit;
+    cp_real sag[2] = {CP_R(0.0), CP_R(0.0)}; /* the count not refined here stays verified */
     int lines = tp->mode == TOOLPATH_LINES;
-    int refine = lines ? cfg->steps == 0u : (tp->n > 1u && cfg->link == TOOLPATH_LINK_AUTO);
-    uint32_t g = lines ? (cfg->steps ? cfg->steps : 16u)
-                       : (cfg->link == TOOLPATH_LINK_AUTO ? 1u : cfg->link + 1u);
-    uint32_t gmax = lines ? CP_MAX_STEPS : CP_MAX_LINK + 1u, worst = 1u;
-    int round, err;
-    for (round = 0; round <= WALK_MAX_ROUNDS; round++) {
-        uint32_t gsteps = lines ? g : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * g : 1u);
+    unsigned q = lines ? 0u : 1u;
+    uint32_t worst = 1u;
+    int round, err = CP_OK;
+    raster_fit_begin(&fit, cfg, &canal_rule[q]);
+    for (round = 0; round <= RASTER_FIT_ROUNDS; round++) {
+        uint32_t g = fit.m[q], gsteps, m;
+        if (!lines && tp->n < 2u && cfg->link != TOOLPATH_LINK_AUTO) {
+            g = cfg->link + 1u;
+        }
+        gsteps = lines ? g : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * g : 1u);
         /* panels >= 1, so m >= 1 */
-        uint32_t m = cfg->substeps ? cfg->substeps : (panels + gsteps - 1u) / gsteps;
-        cp_real want;
+        m = cfg->substeps ? cfg->substeps : (panels + gsteps - 1u) / gsteps;
         if (gsteps > CP_MAX_STEPS * 4u) {
             return CP_ERR_TOO_MANY;
         }
@@ -512,33 +522,24 @@ static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32
             tp->link = (uint16_t)(g - 1u);
         }
         tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
-        err = lines ? CP_OK : circles_nodes(tp, gsteps, tol, &worst);
-        if (err == CP_OK && (lines || refine)) {
-            err = walk_sag(tp, gsteps, &sag);
+        err = lines ? CP_OK : circles_nodes(tp, gsteps, fit.tol, &worst);
+        if (err == CP_OK && (lines || (fit.derive & 2u))) {
+            err = walk_sag(tp, gsteps, &sag[q]);
         }
         if (err != CP_OK) {
             return err;
         }
-        if (!refine || sag <= SAG_MARGIN * tol) {
+        err = raster_fit_update(&fit, sag);
+        if (err != RASTER_FIT_MORE) {
             break;
         }
-        if (round == WALK_MAX_ROUNDS) {
-            return CP_ERR_TOL;
-        }
-        /* sagitta ~ (grid step)^2: scale g, rounding up, with 5% headroom; LINES
-         * tries CP_MAX_STEPS once before giving up */
-        want = (cp_real)g * cp_sqrt(sag / (SAG_MARGIN * tol)) * CP_R(1.05);
-        if (want > (cp_real)gmax) {
-            if (!lines || g == gmax) {
-                return CP_ERR_TOL;
-            }
-            want = (cp_real)gmax;
-        }
-        g = (uint32_t)cp_ceil(want);
+    }
+    if (err != CP_OK) {
+        return err; /* CP_ERR_TOL */
     }
     if (lines) {
         /* link arcs: regularity always, count from the tolerance unless given */
-        err = lines_link(tp, tol);
+        err = lines_link(tp, fit.tol);
         if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != TOOLPATH_LINK_AUTO)) {
             return err;
         }
@@ -594,8 +595,8 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     if (err != CP_OK) {
         return err;
     }
-    tp->count = mul_sat((uint32_t)tp->n, (uint32_t)tp->steps + 1u) +
-                mul_sat((uint32_t)tp->n - 1u, tp->link);
+    /* n <= CP_MAX_LINES, steps <= CP_MAX_STEPS, link <= CP_MAX_LINK: no overflow */
+    tp->count = raster_count(tp->n, tp->steps, tp->link);
     return toolpath_seek(tp, 0u); /* also clears the label caches */
 }
 
