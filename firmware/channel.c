@@ -165,7 +165,7 @@ static CP_NOINLINE cp_real near(cp_real a, cp_real ref)
 void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_real phi,
                    uint8_t order)
 {
-    static const uint8_t ax[2][3] = {{2u, 0u, 1u}, {0u, 1u, 2u}};
+    static const uint8_t ax[2][3] = {{2u, 0u, 1u}, {0u, 1u, 2u}}, nx[3] = {1u, 2u, 0u};
     cp_real ang[3], *v = VR(s) + S_X; /* rows 0 (x, v[0..2]) and 2 (z, v[3..5]) */
     unsigned r, k, o = order == CHANNEL_ORDER_PRINTED ? 1u : 0u;
     ang[0] = theta;
@@ -175,7 +175,7 @@ void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_rea
         v[r] = r == 0u || r == 5u ? CP_R(1.0) : CP_R(0.0); /* e_0, e_2 */
     }
     for (k = 0; k < 3u; k++) { /* each factor applied to both rows */
-        unsigned a = ax[o][k], i = a == 2u ? 0u : a + 1u, j = a == 0u ? 2u : a - 1u;
+        unsigned a = ax[o][k], i = nx[a], j = nx[i]; /* i = a + 1, j = a + 2 (mod 3) */
         cp_real sn, cs;
         cp_sincos(ang[a], &sn, &cs);
         for (r = 0; r < 6u; r += 3u) {
@@ -200,8 +200,8 @@ static const cp_real hc[3][5] = {
     {CP_R(6.0), CP_R(-3.0), CP_R(-3.0), CP_R(-0.5), CP_R(0.5)}};
 
 /* Unit tangent and frame from the tangent r->t: r->sp = |r->t|, r->t /= r->sp (tau),
- * e1 = unit(e_y x tau) = (tau_z, 0, -tau_x)/vn, e2 = tau x e1; flags CHANNEL_ROW_FRAME at
- * vn <= CHANNEL_FRAME_TOL; returns vn. */
+ * e1 = unit(e_y x tau) = (tau_z, 0, -tau_x)/vn, e2 = tau x e1; returns vn (the frame is
+ * undefined at vn <= CHANNEL_FRAME_TOL: the callers' check; r->flags untouched). */
 static cp_real frame(struct channel_row *r)
 {
     cp_real vn;
@@ -210,9 +210,6 @@ static cp_real frame(struct channel_row *r)
     r->e1[1] = CP_R(0.0);
     r->e1[2] = -r->t[0];
     vn = unit(r->e1);
-    if (!(vn > CHANNEL_FRAME_TOL)) {
-        r->flags |= CHANNEL_ROW_FRAME;
-    }
     cross(r->t, r->e1, r->e2);
     return vn;
 }
@@ -227,9 +224,8 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     const cp_real *s0, *s1, *ac;
     cp_real l2[3], v[NQ], dv[NQ], kk[4];
     cp_real t, tt, vn, w, pp, lp, js, qq, lq, r1, r2, a, b, dd, e, dal;
-    unsigned m, k, j, i, fl = 0u; /* law flags, or'ed into r->flags (frame's) at the end */
+    unsigned m, k, j, i, fl; /* CHANNEL_ROW_* flags, stored at the end */
     r->u = u;
-    r->flags = 0u;
     if (!(u > CP_R(0.0))) {
         u = CP_R(0.0);
     }
@@ -268,6 +264,7 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
         l2[k] = CP_R(2.0) * d2;
     }
     vn = frame(r);
+    fl = vn > CHANNEL_FRAME_TOL ? 0u : CHANNEL_ROW_FRAME;
     for (k = 0; k < 2u; k++) {
         r->k[k] = dot(l2, k ? r->e2 : r->e1) / (r->sp * r->sp);
     }
@@ -329,7 +326,7 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
     r->q = CP_R(2.0) / v[Q_N];
     r->dq = -r->q * dv[Q_N] / v[Q_N];
     r->wr = dal + w;
-    r->flags |= (uint8_t)fl;
+    r->flags = (uint8_t)fl;
 }
 
 /* (x, y) rotated by alpha. */
@@ -477,13 +474,29 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
         unsigned lo = i > 0u ? i : 1u, hi = i + 1u < ns ? i + 1u : i;
         t = CP_R(0.5) * (cl[lo] + cl[hi]);
         ch->d[i] = dot(sv + S_Z, cv[hi]) > CP_R(0.0) ? t : -t;
-        r.flags = 0u;
         for (k = 0; k < 3u; k++) {
             r.t[k] = ch->d[i] * sv[S_Z + k];
             ch->acc[i][k] = CP_R(0.0);
         }
-        (void)frame(&r);
-        if (r.flags & CHANNEL_ROW_FRAME) {
+        /* Node second derivatives A_i (B7) = mean of the one-sided cubic-Hermite values: on
+         * chord e = i (d_(i-1), d_i now known) from node e - 1 to node e, H''(0) = 6 dP -
+         * 4 M_(e-1) - 2 M_e at e - 1 (q = 0), H''(1) = -(6 dP - 2 M_(e-1) - 4 M_e) at e
+         * (q = 1); halved, summed over the node's two chords (the lower one first), or twice
+         * the one chord of an end node. */
+        for (q = 0; q < 2u && i > 0u; q++) {
+            unsigned nd = i - 1u + q;
+            cp_real fa = q ? CP_R(2.0) : CP_R(4.0), sg = q ? CP_R(-0.5) : CP_R(0.5);
+            const cp_real *za = sv - 12; /* the z axis of section i - 1 (12 reals before) */
+            for (k = 0; k < 3u; k++) {
+                cp_real h = sg * (CP_R(6.0) * cv[i][k] - fa * ch->d[i - 1u] * za[S_Z + k] -
+                                  (CP_R(6.0) - fa) * ch->d[i] * sv[S_Z + k]);
+                if (nd == 0u || nd + 1u == ns) {
+                    h += h; /* exact: the same sum as adding h twice to 0 */
+                }
+                ch->acc[nd][k] += h;
+            }
+        }
+        if (!(frame(&r) > CHANNEL_FRAME_TOL)) {
             return CP_ERR_FRAME_REF;
         }
         if (a < b) {
@@ -503,25 +516,6 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
         ch->y[Q_JI][i] = jx * cs * cs + jy * sn * sn;
         ch->y[Q_JII][i] = jx * sn * sn + jy * cs * cs;
         ch->y[Q_J12][i] = (jy - jx) * sn * cs;
-    }
-    /* Node second derivatives A_i (B7) = mean of the one-sided cubic-Hermite values: on
-     * chord e from node e - 1 to node e, H''(0) = 6 dP - 4 M_(e-1) - 2 M_e at e - 1 (q = 0),
-     * H''(1) = -(6 dP - 2 M_(e-1) - 4 M_e) at e (q = 1); halved, summed over the node's two
-     * chords (the lower one first), or twice the one chord of an end node. */
-    for (e = 1u; e < ns; e++) {
-        for (q = 0; q < 2u; q++) {
-            unsigned nd = e - 1u + q;
-            cp_real fa = q ? CP_R(2.0) : CP_R(4.0), sg = q ? CP_R(-0.5) : CP_R(0.5);
-            const cp_real *za = CVR(&cfg->s[e - 1u].z), *zb = CVR(&cfg->s[e].z);
-            for (k = 0; k < 3u; k++) {
-                cp_real h = sg * (CP_R(6.0) * cv[e][k] - fa * ch->d[e - 1u] * za[k] -
-                                  (CP_R(6.0) - fa) * ch->d[e] * zb[k]);
-                ch->acc[nd][k] += h;
-                if (nd == 0u || nd + 1u == ns) {
-                    ch->acc[nd][k] += h;
-                }
-            }
-        }
     }
     /* natural cubic splines, uniform knots (h = 1): y2[i-1] + 4 y2[i] + y2[i+1] =
      * r_i = 6 (y[i+1] - 2 y[i] + y[i-1]), y2 = 0 at both ends: N - 2 <= 2 unknowns
