@@ -49,9 +49,12 @@
 #define TAN_PI_8 CP_R(0.41421356237309504880)
 #define SAG_MARGIN CP_R(0.9)
 
-/* gsr_init reads cfg->ref as 3 consecutive reals (&ref.x), the vector helpers any
- * struct cp_vec3 */
+/* gsr_init checks c, r and ref as GSR_NUMS consecutive reals, the vector helpers read
+ * any struct cp_vec3 as 3 reals */
+#define GSR_NUMS (6u * GSR_FN + 3u)
 CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
+CP_STATIC_ASSERT(offsetof(struct gsr_cfg, ref) - offsetof(struct gsr_cfg, c) ==
+                     (GSR_NUMS - 3u) * sizeof(cp_real), gsr_cfg_reals_contiguous);
 
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
@@ -96,56 +99,35 @@ static cp_real unit(struct cp_vec3 *v)
     return l;
 }
 
-/* Scalar family at x: d = f, f', f'', f'''. */
+/* Scalar family at x: d[0], d[3], d[6], d[9] = f, f', f'', f''' (stride 3: one component
+ * of a vector jet, see centre_jet and sec_eval). */
 static void sfun(const cp_real *a, cp_real x, cp_real *d)
 {
-    d[0] = a[0] + x * (a[1] + x * (a[2] + x * a[3]));
-    d[1] = a[1] + x * (CP_R(2.0) * a[2] + x * CP_R(3.0) * a[3]);
-    d[2] = CP_R(2.0) * a[2] + x * CP_R(6.0) * a[3];
-    d[3] = CP_R(6.0) * a[3];
-    if (a[GSR_B] != CP_R(0.0) || a[GSR_C] != CP_R(0.0)) {
+    cp_real a1 = a[1], a2 = a[2], a3 = a[3], b = a[GSR_B], c = a[GSR_C];
+    d[0] = a[0] + x * (a1 + x * (a2 + x * a3));
+    d[3] = a1 + x * (CP_R(2.0) * a2 + x * CP_R(3.0) * a3);
+    d[6] = CP_R(2.0) * a2 + x * CP_R(6.0) * a3;
+    d[9] = CP_R(6.0) * a3;
+    if (b != CP_R(0.0) || c != CP_R(0.0)) {
         cp_real w = a[GSR_W], sn, cs, p, q;
         cp_sincos(w * x, &sn, &cs);
-        p = a[GSR_B] * sn + a[GSR_C] * cs;
-        q = w * (a[GSR_B] * cs - a[GSR_C] * sn);
+        p = b * sn + c * cs;
+        q = w * (b * cs - c * sn);
         d[0] += p;
-        d[1] += q;
-        d[2] -= w * w * p;
-        d[3] -= w * w * q;
+        d[3] += q;
+        d[6] -= w * w * p;
+        d[9] -= w * w * q;
     }
 }
 
-/* Power-basis scalar function of centre coordinate ax (a Bezier is converted: the
- * centre is then the cubic family with b = c = 0, no trigonometry). */
-static void centre_fn(const struct gsr_cfg *cf, unsigned ax, cp_real *a)
+/* Centre jet at t: j[0] = C, j[1] = C', j[2] = C'', j[3] = C''' from the power-basis
+ * coefficients g->cp (sfun writes each axis straight into its component: a struct cp_vec3
+ * is 3 reals, the jet 12). */
+static CP_NOINLINE void centre_jet(const struct gsr *g, cp_real t, struct cp_vec3 *j)
 {
-    const cp_real *p = cf->c[ax];
-    unsigned i;
-    for (i = 0; i < GSR_FN; i++) {
-        a[i] = p[i];
-    }
-    if (cf->centre == GSR_CENTRE_BEZIER) {
-        a[1] = CP_R(3.0) * (p[1] - p[0]);
-        a[2] = CP_R(3.0) * ((p[0] - p[1]) + (p[2] - p[1]));
-        a[3] = (p[3] - p[0]) + CP_R(3.0) * (p[1] - p[2]);
-        a[GSR_B] = CP_R(0.0);
-        a[GSR_C] = CP_R(0.0);
-    }
-}
-
-/* Centre jet at t: j[0] = C, j[1] = C', j[2] = C'', j[3] = C'''. */
-static void centre_jet(const struct gsr_cfg *cf, cp_real t, struct cp_vec3 *j)
-{
-    cp_real a[GSR_FN], d[3][4];
-    unsigned ax, i;
+    unsigned ax;
     for (ax = 0; ax < 3u; ax++) {
-        centre_fn(cf, ax, a);
-        sfun(a, t, d[ax]);
-    }
-    for (i = 0; i < 4u; i++) {
-        j[i].x = d[0][i];
-        j[i].y = d[1][i];
-        j[i].z = d[2][i];
+        sfun(&g->cp[ax * GSR_FN], t, V3(j) + ax);
     }
 }
 
@@ -195,23 +177,23 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
     struct cp_vec3 j[4];
     struct pframe pf;
-    cp_real f[3][4], sp, s2, q, w, cs[2] = {CP_R(1.0), CP_R(0.0)};
+    cp_real f[4][3], sp, s2, q, w, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
     int err = CP_OK;
-    for (i = 0; i < 3u; i++) {
-        sfun(cf->r[i], u, f[i]);
+    for (i = 0; i < 3u; i++) { /* f[k][i]: k-th derivative of f_N, f_B, f_t */
+        sfun(cf->r[i], u, &f[0][i]);
     }
     s->fn = f[0][0];
-    s->fb = f[1][0];
-    s->dfn = f[0][1];
+    s->fb = f[0][1];
+    s->dfn = f[1][0];
     s->dfb = f[1][1];
-    s->ft = f[2][0];
-    centre_jet(cf, f[2][0], j);
+    s->ft = f[0][2];
+    centre_jet(g, f[0][2], j);
     s->c = j[0];
     s->t = j[1];
     s2 = dot(&j[1], &j[1]);
     sp = unit(&s->t);
-    s->ts = f[2][1] * sp;
+    s->ts = f[1][2] * sp;
     if (g->frame == GSR_FRAME_FRENET) {
         ax = &j[2];
         ad = &j[3];
@@ -222,7 +204,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     }
     q = proj(ax, ad, &s->t, &j[2], sp, &pf);
     if (g->frame == GSR_FRAME_RMF) {
-        cp_sincos(rmf_phi(g, f[2][0]), &cs[1], &cs[0]);
+        cp_sincos(rmf_phi(g, f[0][2]), &cs[1], &cs[0]);
         pf.w = CP_R(0.0);
     }
     comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
@@ -233,7 +215,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
     if (g->frame == GSR_FRAME_FIXED && j[1].y != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
-    } else if (!(f[2][0] >= CP_R(0.0) && f[2][0] <= CP_R(1.0) && f[2][1] >= CP_R(0.0))) {
+    } else if (!(f[0][2] >= CP_R(0.0) && f[0][2] <= CP_R(1.0) && f[1][2] >= CP_R(0.0))) {
         err = CP_ERR_FT_RANGE;
     } else if (!(s->fn > CP_R(0.0) && s->fb > CP_R(0.0))) {
         err = CP_ERR_SECTION;
@@ -264,7 +246,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     uint32_t i;
     g->ih = (cp_real)GSR_RMF_N / span;
     for (i = 0; i <= total; i++) {
-        centre_jet(g->cfg, g->t0 + span * ((cp_real)i / (cp_real)total), j);
+        centre_jet(g, g->t0 + span * ((cp_real)i / (cp_real)total), j);
         sp = unit(&j[1]);
         if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &pf) > GSR_EPS * GSR_EPS)) {
             return CP_R(-1.0);
@@ -293,10 +275,14 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
 
 int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
 {
-    cp_real a[GSR_FN], worst = CP_R(0.0);
+    /* the GSR_NUMS = 45 reals c[3][7], r[3][7], ref (contiguous: the asserts above) */
+    const cp_real *f =
+        (const cp_real *)(const void *)((const char *)cf + offsetof(struct gsr_cfg, c));
+    cp_real a[4u * 3u]; /* sfun's output (stride 3): f_t(0), f_t(1) */
+    cp_real worst = CP_R(0.0), d1 = CP_R(0.0), rmax = CP_R(0.0);
     struct gsr_sec s;
     struct cp_vec3 bp = zero;
-    uint32_t k, i;
+    uint32_t k;
     int err;
     if (g == NULL || cf == NULL || cf->centre > GSR_CENTRE_BEZIER ||
         cf->frame > GSR_FRAME_RMF || cf->section > GSR_SECTION_TRIG) {
@@ -305,24 +291,34 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
     g->cfg = cf;
     g->frame = cf->frame;
     g->section = cf->section;
-    g->d1 = CP_R(0.0);
-    for (k = 0; k < 7u; k++) {
-        /* the 7 functions (|w| <= GSR_W_MAX), then ref (3 reals, i < GSR_W) */
-        const cp_real *f = k < 3u ? cf->c[k] : (k < 6u ? cf->r[k - 3u] : &cf->ref.x);
-        for (i = 0; i < (k < 6u ? GSR_FN : 3u); i++) {
-            if (!fin(f[i])) {
-                return CP_ERR_NONFINITE;
-            }
-            if (!(cp_fabs(f[i]) <= (i == GSR_W ? GSR_W_MAX : GSR_COEF_MAX))) {
-                return CP_ERR_RANGE;
-            }
+    for (k = 0; k < GSR_NUMS; k++) {
+        /* the 7 functions (|w| <= GSR_W_MAX), then ref (k % 7 < GSR_W) */
+        if (!fin(f[k])) {
+            return CP_ERR_NONFINITE;
         }
-        if (k < 3u) { /* bound of |C'| over [0, 1], the scale of the degeneracy tests */
-            centre_fn(cf, k, a);
-            g->d1 += cp_fabs(a[1]) + CP_R(2.0) * cp_fabs(a[2]) + CP_R(3.0) * cp_fabs(a[3]) +
-                     cp_fabs(a[GSR_W]) * (cp_fabs(a[GSR_B]) + cp_fabs(a[GSR_C]));
+        if (!(cp_fabs(f[k]) <= (k % GSR_FN == GSR_W ? GSR_W_MAX : GSR_COEF_MAX))) {
+            return CP_ERR_RANGE;
+        }
+        if (k < 3u * GSR_FN) { /* the centre's numbers, converted below */
+            g->cp[k] = f[k];
         }
     }
+    for (k = 0; k < 3u; k++) {
+        /* the centre in the power basis (a Bezier is converted: the cubic family with
+         * b = c = 0, no trigonometry), and the bound of |C'| over [0, 1], the scale of the
+         * degeneracy tests */
+        cp_real *c = &g->cp[k * GSR_FN], p0 = c[0], p1 = c[1], p2 = c[2], p3 = c[3];
+        if (cf->centre == GSR_CENTRE_BEZIER) { /* c holds the control points' coordinate */
+            c[1] = CP_R(3.0) * (p1 - p0);
+            c[2] = CP_R(3.0) * ((p0 - p1) + (p2 - p1));
+            c[3] = (p3 - p0) + CP_R(3.0) * (p1 - p2);
+            c[GSR_B] = CP_R(0.0);
+            c[GSR_C] = CP_R(0.0);
+        }
+        d1 += cp_fabs(c[1]) + CP_R(2.0) * cp_fabs(c[2]) + CP_R(3.0) * cp_fabs(c[3]) +
+              cp_fabs(c[GSR_W]) * (cp_fabs(c[GSR_B]) + cp_fabs(c[GSR_C]));
+    }
+    g->d1 = d1;
     if (cf->frame >= GSR_FRAME_N0 && !(dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
         return CP_ERR_RANGE;
     }
@@ -339,20 +335,20 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
             return CP_ERR_FRAME_REF;
         }
     }
-    g->rmax = CP_R(0.0);
     for (k = 0; k <= GSR_SAMPLES; k++) {
         err = sec_eval(g, (cp_real)k / (cp_real)GSR_SAMPLES, &s);
         if (err != CP_OK) {
             return err;
         }
-        g->rmax = s.fn > g->rmax ? s.fn : g->rmax;
-        g->rmax = s.fb > g->rmax ? s.fb : g->rmax;
+        rmax = s.fn > rmax ? s.fn : rmax;
+        rmax = s.fb > rmax ? s.fb : rmax;
         if (!(dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
             return cf->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
         }
         bp = s.b;
     }
-    return worst * g->rmax <= GSR_RMF_TOL ? CP_OK : CP_ERR_TOL;
+    g->rmax = rmax;
+    return worst * rmax <= GSR_RMF_TOL ? CP_OK : CP_ERR_TOL;
 }
 
 void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s)
@@ -360,18 +356,26 @@ void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s)
     (void)sec_eval(g, u, s);
 }
 
-void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
-               struct cp_vec3 *n)
+/* gsr_point with its N and B coordinates ax = f_N cx, by = f_B cy given (pt_at needs them
+ * too). */
+static void point(const struct gsr_sec *s, cp_real cx, cp_real cy, cp_real ax, cp_real by,
+                  struct cp_vec3 *p, struct cp_vec3 *n)
 {
-    cp_real ax = s->fn * cx, by = s->fb * cy;
+    cp_real fn = s->fn, fb = s->fb;
     cp_real ut = s->ts * (CP_R(1.0) - s->k1 * ax - s->k2 * by);
     cp_real un = s->dfn * cx - s->tw * by;
     cp_real ub = s->dfb * cy + s->tw * ax;
     comb(p, CP_R(1.0), &s->c, ax, &s->n);
     comb(p, CP_R(1.0), p, by, &s->b);
-    comb(n, s->fb * cx * ut, &s->n, s->fn * cy * ut, &s->b);
-    comb(n, CP_R(1.0), n, -(s->fn * cy * ub + s->fb * cx * un), &s->t);
+    comb(n, fb * cx * ut, &s->n, fn * cy * ut, &s->b);
+    comb(n, CP_R(1.0), n, -(fn * cy * ub + fb * cx * un), &s->t);
     (void)unit(n);
+}
+
+void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
+               struct cp_vec3 *n)
+{
+    point(s, cx, cy, s->fn * cx, s->fb * cy, p, n);
 }
 
 void gsr_unit_rational(cp_real psi, cp_real *cx, cp_real *cy)
@@ -591,7 +595,7 @@ static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct ras
 static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
 {
     const struct gsr_sec *s = &it->sec;
-    cp_real g;
+    cp_real g, ax, by, r;
     int err = CP_OK;
     if (x[0] != it->su) {
         err = sec_eval(&it->g, x[0], &it->sec);
@@ -606,13 +610,15 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
         }
         it->cs = x[1];
     }
-    gsr_point(s, it->cc[0], it->cc[1], &pt->p, &pt->n);
-    comb(&pt->p, CP_R(1.0), &pt->p, it->tool_r, &pt->n);
+    ax = s->fn * it->cc[0]; /* the surface point's N and B coordinates (as gsr_point), mm */
+    by = s->fb * it->cc[1];
+    r = it->tool_r;
+    point(s, it->cc[0], it->cc[1], ax, by, &pt->p, &pt->n);
+    comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
     if (it->output == TOOLPATH_OUT_TIP) {
-        pt->p.z -= it->tool_r;
+        pt->p.z -= r;
     }
-    g = CP_R(1.0) - s->k1 * (s->fn * it->cc[0] + it->tool_r * dot(&pt->n, &s->n)) -
-        s->k2 * (s->fb * it->cc[1] + it->tool_r * dot(&pt->n, &s->b));
+    g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
     if (err == CP_OK && !fin(pt->p.x + pt->p.y + pt->p.z + g)) {
         err = CP_ERR_NUMERIC;
     }
@@ -702,10 +708,11 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
             err = raster_fit_update(&fit, sag);
         }
     }
-    if (err == CP_OK) {
-        return gsr_path_seek(it, 0u);
+    if (err != CP_OK) {
+        it->count = 0;
     }
-    it->count = 0;
+    /* CP_OK: the last walk (its gsr_path_seek(it, 0)) left k = 0, and the caches it
+     * filled are keyed by u and sig, so they stay valid (no second seek) */
     return err;
 }
 

@@ -137,6 +137,8 @@ struct gsr {
                                   rad) */
     cp_real t0, t1;           /* f_t(0), f_t(1): the t range of the centre, t0 < t1 */
     cp_real d1;               /* bound of |C'| from the coefficients (scale of the checks) */
+    cp_real cp[3 * GSR_FN];   /* the centre's x, y, z (GSR_FN numbers each) in the power
+                                 basis: the scalar family (a Bezier converted, b = c = 0) */
     cp_real rmax;             /* max(f_N, f_B) over the init samples, mm */
     cp_real ih;               /* RMF: GSR_RMF_N / (t1 - t0) */
     cp_real rmf[GSR_RMF_N + 1u][2]; /* RMF: phi (rad), h dphi/dt at node k (phi: angle of N in
@@ -274,7 +276,6 @@ cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real theta);
 
 /* ---- the toolpath iterator (path.h) ---- */
 struct gsr_path {
-    struct gsr g;
     uint8_t mode, output;    /* enum toolpath_mode, enum toolpath_output */
     uint16_t n, steps, link; /* lines/rings, steps per line/ring, link points */
     uint32_t count, k;       /* total points, points emitted (next k) */
@@ -285,6 +286,7 @@ struct gsr_path {
     cp_real su;              /* u of the cached section (-1: none) */
     cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */
     struct gsr_sec sec;      /* the cached section */
+    struct gsr g;            /* the model (last: the fields above stay at short offsets) */
 };
 
 /* Validate geom (gsr_init) and the raster, derive and verify the step counts, walk the
