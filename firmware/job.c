@@ -111,11 +111,12 @@ int job_ready(const struct job *j)
  *   ;  n u0 u1: an unsigned number, then two numbers (CIRCLES: an optional PATCH)
  *   :  POINT: two or three numbers
  *   0-9  that many numbers
- *   -  not a job command (RUN, RESUME: the protocol's) */
+ *   -  RUN: nothing more (job_line; with anything after it, not a command)
+ * RESUME k is a U with an empty list: its k is the unsigned number (job_line). */
 /* clang-format off */
 static const char words[] =
     "KCURVE\0" "KRADIUS\0" "TTOOL\0" ";LINES\0" ";CIRCLES\0" "USTEPS\0" "1TOL\0" "1FEED\0"
-    "URXBUF\0" "WFORMAT\0" "WCHECKSUM\0" "WSURFACE\0" "-RUN\0" "-RESUME\0"
+    "URXBUF\0" "WFORMAT\0" "WCHECKSUM\0" "WSURFACE\0" "-RUN\0" "URESUME\0"
     "KCENTER\0" "KRADII\0" "KFRAME\0" "KFORM\0"   /* SURFACE GSR (job_gsr.c) */
     "9SECTION\0" "6AXES\0" "WSECTIONS\0"         /* SURFACE CHANNEL (job_channel.c) */
     ":POINT\0" "WPOINTS\0" "UTHICKEN\0" "WEDGE\0" /* SURFACE DRC (job_drc.c) */
@@ -368,6 +369,21 @@ static int canal_command(struct job *j, unsigned c, const struct job_args *a)
 
 int job_command(struct job *j, const char *line, size_t len)
 {
+    /* RUN and RESUME are the protocol's, whatever follows them (job_line checks
+     * RESUME's argument; proto.c calls job_line, so this costs the image nothing) */
+    uint16_t st, ln;
+    uint32_t first;
+    char lead;
+    unsigned c = parse_split(line, len, &st, &ln, 1u) > 0u ? job_word(line + st, ln, 0u, &lead)
+                                                            : 0u;
+    if (c == KW_RUN || c == KW_RESUME) {
+        return JOB_NOT_MINE;
+    }
+    return job_line(j, line, len, &first);
+}
+
+int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
+{
     uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
     unsigned nt = parse_split(line, len, st, ln, JOB_MAX_TOKENS);
     struct job_args a;
@@ -380,8 +396,12 @@ int job_command(struct job *j, const char *line, size_t len)
     /* (parse_split stored at most JOB_MAX_TOKENS tokens: nt beyond that is error:3) */
     c = job_word(line + st[0], ln[0], 0u, &lead);
     m = model_of(c);
-    if (lead == '\0' || lead == '-' || need[m] == 0u) { /* RUN, RESUME or no job command */
+    if (lead == '\0' || need[m] == 0u) { /* no job command */
         return JOB_NOT_MINE;
+    }
+    if (lead == '-') { /* RUN: alone on its line (the line is trimmed) */
+        *first_k = 0u;
+        return nt == 1u ? JOB_RUN : JOB_NOT_MINE;
     }
     if (nt > JOB_MAX_TOKENS) {
         return CP_ST_BAD_ARITY;
@@ -437,7 +457,11 @@ int job_command(struct job *j, const char *line, size_t len)
     if (uint) { /* the first argument is an unsigned number */
         s = parse_uint(line + st[first], ln[first], 0xFFFFFFFFu, &a.u);
         if (s != CP_ST_OK) {
-            return s;
+            return c == KW_RESUME && s == CP_ST_OUT_OF_RANGE ? CP_ST_RESUME_RANGE : s;
+        }
+        if (c == KW_RESUME) {
+            *first_k = a.u;
+            return JOB_RUN;
         }
         first++;
         na--;

@@ -52,6 +52,8 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 
 /* Returned by job_command for a line that is not a job command (e.g. RUN, $I). */
 #define JOB_NOT_MINE (-1)
+/* Returned by job_line for RUN (alone on its line) or RESUME k: the protocol's run. */
+#define JOB_RUN (-2)
 
 struct job {
     struct toolpath_cfg cfg; /* raster (every model) and canal geometry, C units (radians) */
@@ -105,8 +107,16 @@ void job_drc_defaults(union path_geom *g);
 void job_init(struct job *j);
 
 /* Apply one command line (trimmed, no terminator). Returns a wire status
- * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE. */
+ * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE (also for
+ * RUN and RESUME, the protocol's commands). */
 int job_command(struct job *j, const char *line, size_t len);
+
+/* job_command for the protocol: the same, except that RUN alone on its line (RUN with
+ * anything after it is JOB_NOT_MINE) and RESUME k return JOB_RUN with *first = 0 or k
+ * (the job is unchanged). RESUME checks as the other commands: error:3 unless exactly
+ * one argument, error:4 if k is not an unsigned decimal number, error:21 above
+ * 2^32 - 1 (proto.c checks k against the run's point count). */
+int job_line(struct job *j, const char *line, size_t len, uint32_t *first);
 
 /* CP_ST_OK if the job has everything its SURFACE needs, else CP_ST_NO_JOB. */
 int job_ready(const struct job *j);

@@ -88,11 +88,22 @@ static size_t tx_room(struct proto *p)
     return (size_t)(CP_TX_BUF - p->tx_len);
 }
 
+/* Append the text s; returns the text after its NUL (the next key of a packed list:
+ * tx_fields). A text that does not fit is cut at the end of tx[] (callers check
+ * tx_room first, so it never is; the pointer returned then stays inside s). */
+static const char *tx_text(struct proto *p, const char *s)
+{
+    unsigned i, n = p->tx_len, room = (unsigned)sizeof p->tx - n;
+    for (i = 0; i < room && s[i] != '\0'; i++) {
+        p->tx[n + i] = (uint8_t)s[i];
+    }
+    p->tx_len = (uint16_t)(n + i);
+    return s + i + 1u;
+}
+
 static void tx_str(struct proto *p, const char *s)
 {
-    size_t pos = p->tx_len;
-    (void)fmt_str((char *)p->tx, sizeof p->tx, &pos, s);
-    p->tx_len = (uint16_t)pos;
+    (void)tx_text(p, s);
 }
 
 static void tx_u32(struct proto *p, uint32_t v)
@@ -102,37 +113,38 @@ static void tx_u32(struct proto *p, uint32_t v)
     p->tx_len = (uint16_t)pos;
 }
 
-/* Text s, then the number v. */
-static void tx_kv(struct proto *p, const char *s, uint32_t v)
+/* The texts of `keys`, packed (each ended by its NUL), with the numbers v[0..n)
+ * between them: key 0, v[0], key 1, ..., v[n-1], key n. */
+static void tx_fields(struct proto *p, const char *keys, const uint32_t *v, unsigned n)
 {
-    tx_str(p, s);
-    tx_u32(p, v);
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        keys = tx_text(p, keys);
+        tx_u32(p, v[i]);
+    }
+    tx_str(p, keys);
 }
 
 static void reply_status(struct proto *p, int code)
 {
+    uint32_t v = (uint32_t)code;
     if (code == CP_ST_OK) {
         tx_str(p, "ok\n");
         return;
     }
-    tx_kv(p, "error:", (uint32_t)code);
-    tx_str(p, " ");
+    tx_fields(p, "error:\0 ", &v, 1u);
     tx_str(p, cp_status_text(code));
     tx_str(p, "\n");
 }
 
 static void reply_info(struct proto *p)
 {
-    static const char key[6][9] = {",tx=", ",steps=", ",sub=", ",lines=", ",link=", ",window="};
-    static const uint16_t val[6] = {CP_TX_BUF,    CP_MAX_STEPS,
-                                    CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, PROTO_WINDOW};
-    unsigned i;
-    tx_kv(p, "[VER:canalpath " CP_FW_VERSION " proto ", CP_PROTO_VERSION);
-    tx_kv(p, "]\n[OPT:real=" CP_REAL_NAME ",line=", CP_LINE_MAX);
-    for (i = 0; i < 6u; i++) {
-        tx_kv(p, key[i], val[i]);
-    }
-    tx_str(p, ",models=");
+    static const uint32_t val[8] = {CP_PROTO_VERSION, CP_LINE_MAX,  CP_TX_BUF,   CP_MAX_STEPS,
+                                    CP_MAX_SUBSTEPS,  CP_MAX_LINES, CP_MAX_LINK, PROTO_WINDOW};
+    tx_fields(p,
+              "[VER:canalpath " CP_FW_VERSION " proto \0]\n[OPT:real=" CP_REAL_NAME
+              ",line=\0,tx=\0,steps=\0,sub=\0,lines=\0,link=\0,window=\0,models=",
+              val, 8u);
     tx_str(p, job_models());
     tx_str(p, "]\n");
 }
@@ -142,22 +154,27 @@ static void reply_info(struct proto *p)
 static void reply_report(struct proto *p)
 {
     static const char names[3][6] = {"<Idle", "<Run", "<Hold"};
-    uint32_t sent = 0;
+    uint32_t v[4];
+    const char *keys = ">\n";
+    unsigned n = 0;
     tx_str(p, names[p->state]);
     if (p->state != PROTO_IDLE) {
-        uint32_t skip = p->fmt == JOB_GCODE ? p->hdr : 1u; /* header lines, or BEGIN */
-        uint32_t items = p->next > skip ? p->next - skip : 0u;
-        uint32_t npts = p->end - (p->fmt == JOB_GCODE ? p->hdr : 2u);
-        sent = items > npts ? npts : items;
-        {
-            uint32_t k = p->start_k + sent, block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
-            tx_kv(p, "|L:", k > 0u ? (k - 1u) / block : 0u);
-            tx_kv(p, "/", p->path.info.n);
+        /* the items sent after the header lines (or BEGIN) are points from start_k on,
+         * up to the last one (FRAMES: then END) */
+        uint32_t skip = p->fmt == JOB_GCODE ? p->hdr : 1u, m = path_count(&p->path);
+        uint32_t k = p->start_k + (p->next > skip ? p->next - skip : 0u);
+        uint32_t block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
+        if (k > m) { /* start_k + next <= m + 2 (run_start: end): no wrap above */
+            k = m;
         }
-        tx_kv(p, "|P:", p->start_k + sent);
-        tx_kv(p, "/", path_count(&p->path));
+        v[0] = k > 0u ? (k - 1u) / block : 0u;
+        v[1] = p->path.info.n;
+        v[2] = k;
+        v[3] = m;
+        keys = "|L:\0/\0|P:\0/\0>\n";
+        n = 4u;
     }
-    tx_str(p, ">\n");
+    tx_fields(p, keys, v, n);
 }
 
 /*---------------------------------------------------------------------------
@@ -217,13 +234,15 @@ static int run_start(struct proto *p, uint32_t first)
     if (p->fmt == JOB_GCODE) {
         /* what the stream will hold, for hosts and judges (a G-code machine skips
          * '[' lines; this one is not counted against its RX buffer) */
-        tx_kv(p, "[RUN:points=", path_count(&p->path));
-        tx_kv(p, ",first=", first);
-        tx_kv(p, p->path.info.mode == TOOLPATH_LINES ? ",mode=LINES,n=" : ",mode=CIRCLES,n=",
-              p->path.info.n);
-        tx_kv(p, ",steps=", p->path.info.steps);
-        tx_kv(p, ",link=", p->path.info.link);
-        tx_str(p, "]\n");
+        uint32_t v[5];
+        v[0] = path_count(&p->path);
+        v[1] = first;
+        v[2] = p->path.info.n;
+        v[3] = p->path.info.steps;
+        v[4] = p->path.info.link;
+        tx_fields(p, "[RUN:points=\0,first=\0,mode=", v, 2u);
+        tx_str(p, p->path.info.mode == TOOLPATH_LINES ? "LINES" : "CIRCLES");
+        tx_fields(p, ",n=\0,steps=\0,link=\0]\n", v + 2, 3u);
     }
     return CP_ST_OK;
 }
@@ -243,22 +262,27 @@ static CP_NOINLINE int32_t quantize(cp_real v, cp_real scale)
     return (int32_t)cp_floor(v * scale + CP_R(0.5));
 }
 
-/* Build GCODE stream line `idx` into out; returns its length or < 0. The stream is
- * hdr header lines, then one G1 per point. With checksums every line is N<idx>:
- * N0 M110 N0, N1 G21 G90 G17, N2 the first point... */
-static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
+/* Build GCODE stream line `idx` into pend[]; returns its length or < 0 (the point's
+ * error). The stream is hdr header lines, then one G1 per point. With checksums every
+ * line is N<idx>: N0 M110 N0, N1 G21 G90 G17, N2 the first point... The longest line,
+ * "N<10 digits> G1 X<12> Y<12> Z<12> F<12>*<3 digits>\n" (a coordinate or feed is an
+ * int32 count with its sign and point: 12 bytes), is 75 bytes, so no append below can
+ * fail (they are bounded by pend[] anyway). */
+CP_STATIC_ASSERT(12 + 4 + 12 + 3 * (2 + 12) + 4 + 1 <= PROTO_GCODE_MAX, gcode_line_fits);
+static int gcode_line(struct proto *p, uint32_t idx)
 {
+    char *out = p->pend;
+    const size_t cap = sizeof p->pend;
     size_t pos = 0;
-    int err = CP_OK;
     if (p->job.checksum) {
-        err |= fmt_str(out, cap, &pos, "N");
-        err |= fmt_u32(out, cap, &pos, idx);
-        err |= fmt_str(out, cap, &pos, " ");
+        (void)fmt_str(out, cap, &pos, "N");
+        (void)fmt_u32(out, cap, &pos, idx);
+        (void)fmt_str(out, cap, &pos, " ");
     }
     if (idx + 2u == p->hdr) {
-        err |= fmt_str(out, cap, &pos, "M110 N0");
+        (void)fmt_str(out, cap, &pos, "M110 N0");
     } else if (idx + 1u == p->hdr) {
-        err |= fmt_str(out, cap, &pos, "G21 G90 G17");
+        (void)fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
         static const char word[4][5] = {"G1 X", " Y", " Z", " F"};
         struct toolpath_pt pt;
@@ -274,9 +298,9 @@ static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
         v[3] = p->job.feed;
         /* X Y Z with 4 decimals, then F (1 decimal) unless the feed is 0 */
         for (i = 0; i < nw; i++) {
-            err |= fmt_str(out, cap, &pos, word[i]);
-            err |= fmt_fixed(out, cap, &pos, quantize(v[i], i < 3u ? CP_R(10000.0) : CP_R(10.0)),
-                             i < 3u ? 4u : 1u);
+            (void)fmt_str(out, cap, &pos, word[i]);
+            (void)fmt_fixed(out, cap, &pos, quantize(v[i], i < 3u ? CP_R(10000.0) : CP_R(10.0)),
+                            i < 3u ? 4u : 1u);
         }
     }
     if (p->job.checksum) {
@@ -285,11 +309,11 @@ static int gcode_line(struct proto *p, uint32_t idx, char *out, size_t cap)
         for (i = 0; i < pos; i++) {
             cs ^= (uint8_t)out[i];
         }
-        err |= fmt_str(out, cap, &pos, "*");
-        err |= fmt_u32(out, cap, &pos, cs);
+        (void)fmt_str(out, cap, &pos, "*");
+        (void)fmt_u32(out, cap, &pos, cs);
     }
-    err |= fmt_str(out, cap, &pos, "\n");
-    return err != CP_OK ? CP_ERR_FULL : (int)pos;
+    (void)fmt_str(out, cap, &pos, "\n");
+    return (int)pos;
 }
 
 /* Build FRAMES stream item `idx` into out; returns its length or < 0. With a status
@@ -365,7 +389,7 @@ static int run_emit(struct proto *p)
             /* the line is built once into pend[] and waits there until the machine's
              * RX buffer has room for it (text replies meanwhile do not disturb it) */
             if (p->pend_len == 0u || p->pend_idx != p->next) {
-                n = gcode_line(p, p->next, p->pend, sizeof p->pend);
+                n = gcode_line(p, p->next);
                 if (n < 0) {
                     run_finish(p, CP_ST_NUMERIC);
                     return 1;
@@ -535,6 +559,7 @@ static int machine_line(struct proto *p)
 static void exec_line(struct proto *p)
 {
     uint16_t a = 0, b = p->line_len;
+    uint32_t k = 0;
     int st;
     p->lines_seen++;
     if (p->line_flags != 0u) { /* PROTO_LF_OVERFLOW and/or PROTO_LF_BADCHAR */
@@ -581,31 +606,13 @@ static void exec_line(struct proto *p)
         return;
     }
     p->frames_tail = 0; /* a text command: late frames of the last run are over */
-    {
-        /* RUN (the whole line) or RESUME k: a run from point 0 or k */
-        uint16_t ts[3], tl[3];
-        unsigned nt = parse_split(p->line, p->line_len, ts, tl, 2u);
-        unsigned kw = nt >= 1u ? parse_kw(p->line + ts[0], tl[0], "RUN\0RESUME", 2u) : 2u;
-        if ((kw == 0u && nt == 1u) || kw == 1u) { /* the line is trimmed: RUN alone */
-            uint32_t k = 0;
-            st = CP_ST_OK;
-            if (kw == 1u) {
-                st = nt != 2u ? CP_ST_BAD_ARITY
-                              : parse_uint(p->line + ts[1], tl[1], 0xFFFFFFFFu, &k);
-                if (st == CP_ST_OUT_OF_RANGE) {
-                    st = CP_ST_RESUME_RANGE;
-                }
-            }
-            if (st == CP_ST_OK) {
-                st = run_start(p, k);
-            }
-            if (st != CP_ST_OK) {
-                reply_status(p, st);
-            }
+    st = job_line(&p->job, p->line, p->line_len, &k);
+    if (st == JOB_RUN) { /* RUN or RESUME k: a run from point 0 or k ("ok" at its end) */
+        st = run_start(p, k);
+        if (st == CP_ST_OK) {
             return;
         }
     }
-    st = job_command(&p->job, p->line, p->line_len);
     reply_status(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
 }
 

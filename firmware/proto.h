@@ -88,42 +88,47 @@ struct proto_cfg {
 };
 
 struct proto {
-    const struct hal_uart *uart;
-    char line[CP_LINE_MAX];  /* the line being assembled */
-    uint16_t line_len;       /* bytes in line[] */
+    /* Layout (flash, not behaviour): the scalars the engine uses most come first -
+     * bytes, halfwords, words - because Thumb's 16-bit loads and stores reach only
+     * byte offsets below 32, halfword offsets below 64 and word offsets below 128;
+     * the path follows them, so the iterators' fields stay near the start of the
+     * (single, static) engine too; then the job, the rarely used scalars and the
+     * buffers. Measured on the all-models LTO image: about -490 B against the plain order. */
+    uint8_t state;           /* enum proto_state */
+    uint8_t fmt;             /* enum job_format of the current run */
+    uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */
+    uint8_t retries;         /* FRAMES: consecutive timeouts */
+    uint8_t pend_len;        /* GCODE: bytes of the built line in pend[], waiting for RXBUF room */
+    uint8_t hdr;             /* GCODE: header lines before the points (1, or 2 with CHECKSUM) */
+    uint8_t frames_tail;     /* the last run was FRAMES: late ACK/NAK frames may still arrive */
+    uint8_t tail_len;        /* bytes of a possible late frame held in tail[] */
+    uint8_t tail_rep;        /* bytes of tail[] still to replay as text (not a frame after all) */
+    uint8_t rx_len, rx_pos;  /* valid bytes in rx[], next to consume */
     uint8_t line_flags;      /* PROTO_LF_* of the current line */
     uint8_t last_cr;         /* previous byte was '\r' (so a following '\n' is skipped) */
-    uint8_t rx[32];          /* bytes read from the HAL, not yet consumed */
-    uint8_t rx_len, rx_pos;  /* valid bytes in rx[], next to consume */
-    uint8_t tx[CP_TX_BUF];   /* bytes waiting for the HAL */
+    uint16_t line_len;       /* bytes in line[] */
     uint16_t tx_len, tx_pos; /* bytes in tx[], next to send */
-    uint32_t lines_seen;     /* complete lines received (diagnostics) */
+    uint16_t inflight;       /* GCODE: bytes of unacknowledged lines */
+    uint16_t resync;         /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
+    const struct hal_uart *uart;
+    uint32_t start_k;        /* first point of the run (RESUME k) */
+    uint32_t next;           /* next stream item to send (GCODE line / FRAMES frame index) */
+    uint32_t acked;          /* FRAMES: items below are acknowledged; GCODE: lines acked */
+    uint32_t end;            /* stream items of the run */
+    uint32_t t_last;         /* ms of the last progress from the peer */
+    struct path path;        /* the validated toolpath of the current run (any model) */
+    struct job job;          /* the job being assembled / run */
     int err;                 /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
-    /* job and run */
-    struct job job;            /* the job being assembled / run */
-    struct path path;          /* the validated toolpath of the current run (any model) */
-    uint8_t state;             /* enum proto_state */
-    uint8_t fmt;               /* enum job_format of the current run */
-    uint8_t ring_head, ring_n; /* GCODE: lengths of unacknowledged lines */
-    uint8_t ring[PROTO_RING];
-    uint16_t inflight;   /* GCODE: bytes of unacknowledged lines */
-    uint16_t resync;     /* GCODE: 1 after a Resend: wait for a quiet line, then restart */
-    uint8_t retries;     /* FRAMES: consecutive timeouts */
-    uint8_t pend_len;    /* GCODE: bytes of the built line in pend[], waiting for RXBUF room */
-    uint8_t hdr;         /* GCODE: header lines before the points (1, or 2 with CHECKSUM) */
-    uint8_t frames_tail; /* the last run was FRAMES: late ACK/NAK frames may still arrive */
-    uint8_t tail_len;    /* bytes of a possible late frame held in tail[] */
-    uint8_t tail_rep;    /* bytes of tail[] still to replay as text (not a frame after all) */
+    uint32_t lines_seen;     /* complete lines received (diagnostics) */
+    uint32_t tail_t;         /* ms when tail[] got its first byte (a stalled prefix is replayed) */
+    uint32_t pend_idx;       /* GCODE: stream index of that line */
     uint8_t tail[FRAME_MIN]; /* a possible late 6-byte host frame, checked before it is dropped */
-    uint32_t tail_t;     /* ms when tail[] got its first byte (a stalled prefix is replayed) */
-    uint32_t pend_idx;   /* GCODE: stream index of that line */
+    uint8_t ring[PROTO_RING];
+    char line[CP_LINE_MAX];  /* the line being assembled */
+    uint8_t rx[32];          /* bytes read from the HAL, not yet consumed */
+    uint8_t tx[CP_TX_BUF];   /* bytes waiting for the HAL */
     char pend[PROTO_GCODE_MAX]; /* GCODE: the next stream line, built once */
-    uint32_t start_k;           /* first point of the run (RESUME k) */
-    uint32_t next;              /* next stream item to send (GCODE line / FRAMES frame index) */
-    uint32_t acked;             /* FRAMES: items below are acknowledged; GCODE: lines acked */
-    uint32_t end;               /* stream items of the run */
-    uint32_t t_last;            /* ms of the last progress from the peer */
-    struct frame_rx frx;        /* FRAMES: decoder of the host's frames */
+    struct frame_rx frx;     /* FRAMES: decoder of the host's frames */
 };
 
 /* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or

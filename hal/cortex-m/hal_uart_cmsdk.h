@@ -38,7 +38,6 @@
 
 /* Port state; the caller owns it (static storage: the ISRs keep a pointer). */
 struct hal_uart_cmsdk {
-    uint8_t rx[HAL_UART_CMSDK_RX_RING]; /* received bytes, ring */
     volatile uint8_t rx_head;            /* next write index (ISR / read() under PRIMASK) */
     volatile uint8_t rx_tail;            /* next read index (read() only) */
     volatile uint8_t event;              /* set by every ISR; consumed by _sleep() */
@@ -46,6 +45,8 @@ struct hal_uart_cmsdk {
     uint32_t tick_last;                  /* TIMER0 value at the last time update, ticks */
     uint32_t tick_frac;                  /* ticks not yet counted as a whole ms (0..24999) */
     uint32_t ms;                         /* milliseconds since init, wraps at 2^32 */
+    uint8_t rx[HAL_UART_CMSDK_RX_RING]; /* received bytes, ring (after the scalars: their
+                                            offsets stay in reach of 16-bit Thumb loads) */
 };
 
 /* Configure UART0 (8N1, BAUDDIV for 115200 at 25 MHz; QEMU ignores the rate),
