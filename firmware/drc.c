@@ -139,11 +139,6 @@ static cp_real rq(cp_real q)
     return (e1 - e2) / e2;
 }
 
-static CP_NOINLINE cp_real sgn_inf(cp_real x)
-{
-    return x == ZERO ? ZERO : (x > ZERO ? DRC_K_INF : -DRC_K_INF);
-}
-
 /* End curvatures ka, kb (1/mm, signed with the turn) and q of the segment model with
  * end angles a, b on a chord of length len (A.2 step 1). */
 static CP_NOINLINE void seg_k(cp_real a, cp_real b, cp_real len, cp_real *ka, cp_real *kb,
@@ -166,8 +161,9 @@ static CP_NOINLINE void seg_k(cp_real a, cp_real b, cp_real len, cp_real *ka, cp
          * at the other, so G2 there is reachable only as that angle -> 0: the bisection
          * ends with the tangent on the chord (the "end value" of A.2; line_arc: an exact
          * curvature step at the join, no inflection) */
-        *ka = sgn_inf(a);
-        *kb = sgn_inf(b);
+        cp_real k = a + b > ZERO ? DRC_K_INF : -DRC_K_INF; /* a + b: the nonzero one */
+        *ka = a == ZERO ? ZERO : k;
+        *kb = b == ZERO ? ZERO : k;
     } else {
         *ka = TWO * (TWO * a - b) / lt;
         *kb = TWO * (TWO * b - a) / lt;
@@ -191,23 +187,24 @@ int drc_size(uint32_t n, uint32_t passes, uint32_t *need)
 
 /* Scratch of step 1 (the caller's tangent array holds the normals meanwhile). */
 struct drc_scratch {
-    cp_real phi[CP_MAX_DRC_POINTS]; /* signed turning at interior vertices (0 at the ends) */
+    cp_real phi[CP_MAX_DRC_POINTS]; /* signed turning at interior vertices 1..n-2; at the
+                                       ends (solve) the end angles a0 (phi[0], tp[0] = 1)
+                                       and b1 (phi[n-1], tp[n-1] = 0) */
     cp_real len[CP_MAX_DRC_POINTS]; /* chord lengths */
     cp_real tp[CP_MAX_DRC_POINTS];  /* tangent parameters t_j */
     cp_real tau[CP_MAX_DRC_POINTS]; /* AP torsion of chords 1..n-3 (3D only) */
-    cp_real a0, b1;                 /* end angles: a of segment 0, b of segment n - 2 */
 };
 
-/* Angles of segment i from the tangent parameters: a = t_i phi_i (a0 at i = 0),
- * b = (1 - t_{i+1}) phi_{i+1} (b1 at the last segment). */
-static CP_NOINLINE cp_real seg_a(const struct drc_scratch *w, uint32_t i)
+/* Angles of segment i from the tangent parameters: a = t_i phi_i (a0 at i = 0: 1 a0),
+ * b = (1 - t_{i+1}) phi_{i+1} (b1 at the last segment: (1 - 0) b1); exact. */
+static cp_real seg_a(const struct drc_scratch *w, uint32_t i)
 {
-    return i == 0u ? w->a0 : w->tp[i] * w->phi[i];
+    return w->tp[i] * w->phi[i];
 }
 
-static CP_NOINLINE cp_real seg_b(const struct drc_scratch *w, uint32_t i, uint32_t n)
+static cp_real seg_b(const struct drc_scratch *w, uint32_t i)
 {
-    return i + 2u == n ? w->b1 : (ONE - w->tp[i + 1u]) * w->phi[i + 1u];
+    return (ONE - w->tp[i + 1u]) * w->phi[i + 1u];
 }
 
 /* Validation and step 0 (A.3), in the order: count, per coordinate non-finite or range,
@@ -226,16 +223,18 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     if (n > CP_MAX_DRC_POINTS) {
         return CP_ERR_TOO_MANY;
     }
+    for (k = 0; k < 3u; k++) {
+        lo[k] = hi[k] = CV3(p)[k]; /* (a non-finite P_0 is rejected below, unused) */
+    }
     for (i = 0; i < n; i++) {
-        const struct cp_vec3 *q = &p[i * ps];
-        const cp_real v[3] = {q->x, q->y, q->z};
+        const cp_real *v = CV3(&p[i * ps]);
         for (k = 0; k < 3u; k++) {
             if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
                 /* x - x is 0 for finite x, NaN for NaN and Inf */
                 return v[k] - v[k] == ZERO ? CP_ERR_RANGE : CP_ERR_NONFINITE;
             }
-            lo[k] = (i == 0u || v[k] < lo[k]) ? v[k] : lo[k];
-            hi[k] = (i == 0u || v[k] > hi[k]) ? v[k] : hi[k];
+            lo[k] = v[k] < lo[k] ? v[k] : lo[k];
+            hi[k] = v[k] > hi[k] ? v[k] : hi[k];
         }
         if (planar && v[2] != ZERO) {
             return CP_ERR_OFF_PLANE;
@@ -245,8 +244,6 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
         dd += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     }
     dd = cp_sqrt(dd) * DRC_COINCIDENT_REL;
-    w->phi[0] = ZERO;
-    w->phi[n - 1u] = ZERO;
     for (i = 0; i + 1u < n; i++) {
         sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
         w->len[i] = norm3(&d1);
@@ -268,11 +265,10 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
 }
 
 /* G2 residual of vertex j at tangent parameter x (A.2 step 1), times sign(phi_j). */
-static CP_ALWAYS_INLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, uint32_t n,
-                                        cp_real x)
+static CP_ALWAYS_INLINE cp_real g2_res(const struct drc_scratch *w, uint32_t j, cp_real x)
 {
     cp_real ka, kb, kl, kr, q, ph = w->phi[j];
-    seg_k(x * ph, seg_b(w, j, n), w->len[j], &ka, &kb, &q);
+    seg_k(x * ph, seg_b(w, j), w->len[j], &ka, &kb, &q);
     seg_k(seg_a(w, j - 1u), (ONE - x) * ph, w->len[j - 1u], &kl, &kr, &q);
     return ph > ZERO ? ka - kr : kr - ka;
 }
@@ -294,11 +290,13 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
 {
     cp_real ka, kb, q, x, k;
     uint32_t i, s, e;
-    w->a0 = ZERO;
-    w->b1 = ZERO;
     for (i = 0; i < n; i++) {
         w->tp[i] = HALF;
     }
+    w->tp[0] = ONE; /* the end angles a0 = phi[0], b1 = phi[n-1] (seg_a, seg_b) */
+    w->tp[n - 1u] = ZERO;
+    w->phi[0] = ZERO;
+    w->phi[n - 1u] = ZERO;
     if (n == 3u) {
         struct cp_vec3 ch;
         sub3(&p[2u * ps], &p[0], &ch);
@@ -306,19 +304,22 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
         k = x / norm3(&ch); /* half the signed curvature of the circle */
         for (e = 0; e < 2u; e++) {
             x = w->len[e] * k;
-            *(e ? &w->b1 : &w->a0) = cp_atan2(x, cp_sqrt(ONE - x * x));
+            w->phi[e * (n - 1u)] = cp_atan2(x, cp_sqrt(ONE - x * x));
         }
     }
     for (s = 0; s < DRC_SWEEPS; s++) {
         for (e = 0; n >= 4u && e < 2u; e++) {
-            uint32_t j = e ? n - 3u : 1u;
-            cp_real lr = w->len[e ? n - 2u : 0u] / w->len[j];
-            seg_k(seg_a(w, j), seg_b(w, j, n), w->len[j], &ka, &kb, &q);
+            /* v the neighbour vertex (1, N - 2), j = v - e its inner segment, v - 1 + e
+             * the end segment */
+            uint32_t v = e ? n - 2u : 1u, j = v - e;
+            cp_real lr = w->len[v - 1u + e] / w->len[j];
+            seg_k(seg_a(w, j), seg_b(w, j), w->len[j], &ka, &kb, &q);
             x = rq(q * (lr < ONE ? lr : ONE));
-            k = w->phi[e ? n - 2u : 1u]; /* the neighbour vertex's turn */
-            x = e ? w->tp[n - 2u] * k * x : (ONE - w->tp[1]) * k / x;
+            k = w->phi[v]; /* the neighbour vertex's turn */
+            q = (e ? w->tp[v] : ONE - w->tp[v]) * k;
+            x = e ? q * x : q / x;
             /* |end angle| <= |turn|: < 90 deg and convex (same sign), circles untouched */
-            *(e ? &w->b1 : &w->a0) = cp_fabs(x) > cp_fabs(k) ? k : x;
+            w->phi[e * (n - 1u)] = cp_fabs(x) > cp_fabs(k) ? k : x;
         }
         for (i = 1; i + 1u < n; i++) {
             cp_real lo = ZERO, hi = ONE, m;
@@ -328,7 +329,7 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
             }
             for (b = 0; b < DRC_T_BISECT; b++) {
                 m = HALF * (lo + hi);
-                if (g2_res(w, i, n, m) < ZERO) {
+                if (g2_res(w, i, m) < ZERO) {
                     lo = m;
                 } else {
                     hi = m;
@@ -343,7 +344,7 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
  * about the normal: a0, t_i phi_i, -b1. */
 static cp_real tan_angle(const struct drc_scratch *w, uint32_t i, uint32_t n)
 {
-    return i == 0u ? w->a0 : (i + 1u == n ? -w->b1 : w->tp[i] * w->phi[i]);
+    return i + 1u == n ? -w->phi[i] : seg_a(w, i);
 }
 
 /* o = the unit vector (dx, dy, 0) rotated by ang about +z; returns cos ang. */
@@ -970,19 +971,16 @@ static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
  * average; otherwise the descent along the bits of the leaf index (K inserts). Same
  * nodes, same operands (an insert reads only its interval's ends): same bits, so
  * seek(k) reproduces the streamed point exactly. A backward line (dir) inserts with
- * the ends swapped back into curve order. */
+ * the ends swapped back into curve order. The depth-0 interval is the original segment:
+ * its far end is loaded into stk[0] when level 1 is (re)built (there it stays stk[0], or
+ * the level-1 midpoint replaces it). pos == steps is the line's last original point: no
+ * levels (js = N - 1 forward, or 0 by the unsigned wrap of N - 2 - (N - 1) + 1 backward). */
 static void walk_to(struct drc_path *it, uint32_t pos)
 {
-    uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d, dn = 0u;
-    uint32_t js = pos >> kk;
-    struct drc_pt far, tmp;
-    if (pos >= it->steps) {
-        orig(it, (1u - it->dir) * it->nseg, &it->cur);
-        it->pos = pos;
-        return;
-    }
+    uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d = 1u, dn = 0u;
+    uint32_t js = pos >> kk, top = pos < it->steps ? kk : 0u;
+    struct drc_pt tmp;
     js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
-    orig(it, js + 1u - it->dir, &far);
     if (m != 0u && pos == it->pos + 1u) {
         tmp = it->stk[kk - 1u]; /* the point at pos: the old leaf's far end */
         dn = kk;                /* depth of node pos: K - ctz(m); m has a set bit below K */
@@ -990,16 +988,20 @@ static void walk_to(struct drc_path *it, uint32_t pos)
             z >>= 1;
             dn--;
         }
+        d = dn;
     } else {
         orig(it, js + it->dir, &it->cur);
     }
-    for (d = dn > 0u ? dn : 1u; d <= kk; d++) {
-        const struct drc_pt *pf = d == 1u ? &far : &it->stk[d - 2u];
+    for (; d <= top; d++) {
+        const struct drc_pt *pf = &it->stk[d == 1u ? 0u : d - 2u];
+        if (d == 1u) {
+            orig(it, js + 1u - it->dir, &it->stk[0]);
+        }
         if (d != dn) {
             insert_planar(it->dir ? pf : &it->cur, it->dir ? &it->cur : pf, &tmp);
         }
         if ((m >> (kk - d)) & 1u) {
-            it->stk[d - 1u] = *pf;
+            it->stk[d - 1u] = *pf; /* (d = 1: stk[0] itself, exact overlap) */
             it->cur = tmp;
         } else {
             it->stk[d - 1u] = tmp;
@@ -1023,7 +1025,7 @@ static void line_start(struct drc_path *it, uint32_t jl)
 {
     cp_real r[3];
     it->line = (int32_t)jl;
-    it->dir = (uint8_t)(it->edge ? (jl & 1u) : 0u);
+    it->dir = (uint8_t)(jl & 1u); /* (CURVE mode and the curve walk: line 0 only) */
     walk_to(it, 0u);
     it->s = it->dir ? it->s_tot : ZERO;
     it->lam = it->dir ? it->lam_tot : ZERO;
@@ -1052,22 +1054,27 @@ static CP_NOINLINE cp_real walk_sigma(const struct drc_path *it)
  * every line's Lambda at a point is the same sum. In CURVE mode Lambda is unused. */
 static void line_step(struct drc_path *it)
 {
-    struct drc_pt prev = it->cur;
-    const struct drc_pt *a = it->dir ? &it->cur : &prev, *b = it->dir ? &prev : &it->cur;
+    const struct drc_pt a = it->cur, *b = &it->cur; /* a -> b in travel order */
     cp_real r[3], dx, dy, h, c, kap;
     walk_to(it, it->pos + 1u);
-    dx = b->p.x - a->p.x;
-    dy = b->p.y - a->p.y;
+    dx = b->p.x - a.p.x;
+    dy = b->p.y - a.p.y;
     h = cp_sqrt(dx * dx + dy * dy);
-    c = a->t.x * b->t.x + a->t.y * b->t.y;
+    c = a.t.x * b->t.x + a.t.y * b->t.y;
     /* 2 sin(th/2) = 2 sin th / sqrt(2 (1 + cos th)); |th| < 90 deg so 1 + c > 1 */
-    kap = TWO * (a->t.x * b->t.y - a->t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    kap = TWO * (a.t.x * b->t.y - a.t.y * b->t.x) / (cp_sqrt(TWO * (ONE + c)) * h);
+    h *= ONE + (ONE - c) / CP_R(12.0);
+    if (it->dir) { /* curve order b -> a: the cross product and the arc-length step change
+                      sign, exactly (h and c are symmetric in a, b; 0 - kap keeps a zero
+                      curvature +0, as the cross product in curve order gives) */
+        kap = ZERO - kap;
+        h = -h;
+    }
     it->kap = kap;
     if (it->pos == 1u) {
         it->kend[it->dir] = kap; /* the end leaf of the line's start (init: kend[1]) */
     }
-    h *= ONE + (ONE - c) / CP_R(12.0);
-    it->s += it->dir ? -h : h;
+    it->s += h;
     rlaw(it, walk_sigma(it), r);
     it->lam += kap * (r[0] - it->r_cur); /* the same in both directions */
     it->r_cur = r[0];
@@ -1189,12 +1196,14 @@ static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
     return x - x == ZERO;
 }
 
-/* Walk every block's points r = lo..hi (no link after the last line; CURVE mode: one
- * line): the checks of point_at, finite points, and the largest sagitta of the lines
- * (deviation of each point from its neighbours' chord / 4: exact for circular arcs of
- * equal steps) into *sag. A point equal to the one two steps back (zero chord, NaN
- * sagitta) is CP_ERR_NUMERIC, not skipped: AUTO must not stop on an unmeasured line. */
-static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_real *sag)
+/* Walk the points r = lo..hi of blocks 0..nb-1 (the curve: 1; the lines: n; the links:
+ * n - 1, none after the last line): the checks of point_at, finite points, and the
+ * largest sagitta of the lines (deviation of each point from its neighbours' chord / 4:
+ * exact for circular arcs of equal steps) into *sag. A point equal to the one two steps
+ * back (zero chord, NaN sagitta) is CP_ERR_NUMERIC, not skipped: AUTO must not stop on
+ * an unmeasured line. */
+static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint32_t hi,
+                            cp_real *sag)
 {
     struct toolpath_pt pt;
     struct cp_vec3 q0, q1, u, v;
@@ -1202,7 +1211,7 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
     uint32_t jl, r;
     int err;
     q0 = q1 = it->cur.p; /* (set by r = 0 and 1 before use) */
-    for (jl = 0; jl < (it->edge ? it->n : 1u) && !(lo > it->steps && jl + 1u == it->n); jl++) {
+    for (jl = 0; jl < nb; jl++) {
         for (r = lo; r <= hi; r++) {
             err = point_at(it, jl, r, &pt);
             if (err != CP_OK) {
@@ -1214,10 +1223,9 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
             if (r >= 2u && r <= it->steps) { /* distance of q1 from the chord q0 pt.p */
                 sub3(&pt.p, &q0, &u);
                 sub3(&q1, &q0, &v);
-                x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u */
-                v.x += x * u.x;
-                v.y += x * u.y;
-                v.z += x * u.z;
+                x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
+                                                     v + x u, bit for bit) */
+                comb3(x, &u, ONE, &v, &v);
                 x = CP_R(0.25) * norm3(&v);
                 if (!(x >= ZERO)) { /* NaN: pt == q0 (a zero chord), no sagitta (B4) */
                     return CP_ERR_NUMERIC;
@@ -1233,7 +1241,7 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t lo, uint32_t hi, cp_re
 
 int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct toolpath_cfg *rc)
 {
-    uint32_t kk, i;
+    uint32_t kk, i, e;
     cp_real sag = ZERO, *c = it->rp, t, x;
     int err, au;
     it->count = 0;
@@ -1304,22 +1312,22 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
         return err;
     }
     it->nseg = (uint8_t)(g->n - 1u);
-    /* AUTO: K = 1, 2, ... until the sagitta fits; else the one K (g->passes is at most
-     * CP_MAX_PASSES here, and that iteration ends the loop) */
-    for (kk = au ? 1u : g->passes; kk <= CP_MAX_PASSES + 1u; kk++) {
-        uint32_t e = it->edge;
-        if (kk > CP_MAX_PASSES) {
-            return CP_ERR_TOL;
-        }
+    e = it->edge;
+    /* AUTO: K = 1, 2, ... until the sagitta fits (CP_ERR_TOL when even CP_MAX_PASSES
+     * does not); else the one K (g->passes is at most CP_MAX_PASSES here, and that
+     * iteration ends the loop) */
+    for (kk = au ? 1u : g->passes; kk <= CP_MAX_PASSES; kk++) {
+#if ((CP_MAX_DRC_POINTS - 1) << CP_MAX_PASSES) > CP_MAX_STEPS /* (else it cannot fail) */
         if (((uint32_t)it->nseg << kk) > CP_MAX_STEPS) {
             return au ? CP_ERR_TOL : CP_ERR_TOO_MANY;
         }
+#endif
         it->passes = (uint8_t)kk;
         it->steps = (uint16_t)(it->nseg << kk);
         sag = ZERO;
         /* the curve itself: its sagitta, and the arc length (sigma's scale) */
         it->edge = 0u;
-        err = walk(it, 0u, it->steps, &sag);
+        err = walk(it, 1u, 0u, it->steps, &sag);
         it->s_tot = it->s;
         it->kend[1] = it->kap; /* the last leaf's curvature (P_{N-1} end circle) */
         it->edge = (uint8_t)e;
@@ -1327,7 +1335,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
             cp_real r[3];
             rlaw(it, ZERO, r);
             it->q0 = cp_sqrt(ONE + r[1] * r[1]);
-            err = walk(it, 0u, it->steps, &sag);
+            err = walk(it, it->n, 0u, it->steps, &sag);
         }
         if (err != CP_OK) {
             return err;
@@ -1336,7 +1344,10 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
             break;
         }
     }
-    if (it->edge) {
+    if (kk > CP_MAX_PASSES) {
+        return CP_ERR_TOL;
+    }
+    if (e) {
         /* link points: uniform angle steps on the end circle (radius (R - off)/q), so
          * the chord tolerance fixes them: step 4 x sqrt(tol / 2 rad) DRC_SAG_MARGIN
          * (x <= asin x: the sagitta of that step is <= 0.81 tol); then every link point
@@ -1355,7 +1366,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct too
             return CP_ERR_TOL;
         }
         it->link = rc->link != TOOLPATH_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
-        err = walk(it, it->steps + 1u, (uint32_t)it->steps + it->link, &sag);
+        err = walk(it, it->n - 1u, it->steps + 1u, (uint32_t)it->steps + it->link, &sag);
         if (err != CP_OK) {
             return err;
         }

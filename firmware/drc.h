@@ -49,7 +49,7 @@
  *     thickened points (drc.c, rule and error bound there).
  *
  * Footprint (the whole M4F image must fit 32 KB flash): the stream uses only the planar
- * core (validation, tangent assignment, planar insertion) and the iterator, ~6.3 KB of
+ * core (validation, tangent assignment, planar insertion) and the iterator, ~5.5 KB of
  * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
  * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4
  * measures stay in this library, compiled and tested on the host and in the M4F unit
@@ -106,30 +106,30 @@ struct drc_pt {
 /* The geometry of a DRC job (union path_geom member; lives in struct job for the
  * whole run, the iterator keeps a const pointer to it). */
 struct drc_cfg {
-    struct cp_vec3 p[CP_MAX_DRC_POINTS]; /* the points, mm, |coordinate| <= CANAL_COORD_MAX */
     uint8_t n;      /* points given, 0..CP_MAX_DRC_POINTS (>= 3 at init) */
     uint8_t passes; /* K, 0..CP_MAX_PASSES; DRC_PASSES_AUTO = derive from raster tol */
     uint8_t edge;   /* 0: the curve itself (CURVE mode); 1: fillet along it (EDGE mode) */
+    struct cp_vec3 p[CP_MAX_DRC_POINTS]; /* the points, mm, |coordinate| <= CANAL_COORD_MAX
+                                            (last: 16-bit loads reach the bytes) */
 };
 
 #define DRC_PASSES_AUTO 0xFFu
 
-/* The streaming iterator (struct path's union). */
+/* The streaming iterator (struct path's union). Field order for flash: the small integers
+ * first (Thumb's 16-bit loads reach byte fields at offsets < 32, halfwords < 64, words
+ * < 128), the reals next, the point arrays last. */
 struct drc_path {
     const struct drc_cfg *g;          /* the geometry (not copied: must outlive the run) */
     const struct toolpath_cfg *rc;    /* the raster (not copied: must outlive the run) */
-    struct cp_vec3 tan[CP_MAX_DRC_POINTS]; /* step 1: unit tangents at the original points */
-    struct drc_pt cur;                /* the point of the walk */
-    struct drc_pt stk[CP_MAX_PASSES]; /* stk[d - 1]: far end of the depth-d interval */
-    uint32_t count, k;                /* total points, points emitted */
-    uint32_t pos;                     /* walk position along the line, 0..steps */
-    uint16_t n, steps, link;          /* lines, steps per line (2^K (N-1)), link points */
     uint8_t mode;                     /* TOOLPATH_LINES (path info; the only mode) */
     uint8_t edge;                     /* 0 CURVE mode, 1 EDGE mode (g->edge) */
     uint8_t passes;                   /* K in use (AUTO: the one found at init) */
     uint8_t dir;                      /* walk direction: 0 P_0 -> P_{N-1}, 1 backward
                                          (EDGE: odd lines, zigzag) */
     uint8_t nseg;                     /* original segments, N - 1 */
+    uint16_t n, steps, link;          /* lines, steps per line (2^K (N-1)), link points */
+    uint32_t count, k;                /* total points, points emitted */
+    uint32_t pos;                     /* walk position along the line, 0..steps */
     int32_t line;                     /* line of the walk (-1: none) */
     cp_real rp[4];                    /* radius law: COS b c k, else power-basis cubic (mm) */
     cp_real q0;                       /* sqrt(1 + (dR/ds)^2) at P_0 (labels) */
@@ -137,6 +137,9 @@ struct drc_path {
     cp_real s, lam, r_cur, kap;       /* walk: arc length, Lambda, R, last leaf's curvature */
     cp_real s_tot, lam_tot;           /* at the last point (forward walk) */
     cp_real kend[2];                  /* curvature of the first / last leaf (end circles) */
+    struct drc_pt cur;                /* the point of the walk */
+    struct drc_pt stk[CP_MAX_PASSES]; /* stk[d - 1]: far end of the depth-d interval */
+    struct cp_vec3 tan[CP_MAX_DRC_POINTS]; /* step 1: unit tangents at the original points */
 };
 
 /* Size of K passes over n points: 2^K (n - 1) + 1, in *need.
