@@ -188,8 +188,6 @@ CP_MUST_CHECK int channel_wire_inertia(const struct channel_section *s, uint32_t
 
 /* The iterator (struct path's union member). */
 struct channel_path {
-    struct channel ch;
-    struct channel_row row; /* cached row (row.u = -1: none) */
     uint8_t mode;           /* enum toolpath_mode: LINES (along u) or CIRCLES (along w) */
     uint8_t output;         /* enum toolpath_output: SURFACE, CENTRE or TIP */
     uint16_t n;             /* lines / rings, 1..CP_MAX_LINES */
@@ -201,6 +199,8 @@ struct channel_path {
     cp_real tool_r;         /* tool radius (mm) */
     uint32_t count;         /* points of the whole path (0 before a successful init) */
     uint32_t k;             /* next point index, 0..count (points emitted so far) */
+    struct channel_row row; /* cached row (row.u = -1: none) */
+    struct channel ch;      /* last: the fields above stay at Thumb's short offsets */
 };
 
 /* Validate the geometry (channel_init) and the raster, walk the evaluation grid (whole

@@ -285,8 +285,8 @@ struct gsr_path {
     cp_real v0, dv;          /* LINES: theta_j = v0 + j dv, radians */
     cp_real su;              /* u of the cached section (-1: none) */
     cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */
+    struct gsr g;            /* the model (before sec: its cfg pointer at a short offset) */
     struct gsr_sec sec;      /* the cached section */
-    struct gsr g;            /* the model (last: the fields above stay at short offsets) */
 };
 
 /* Validate geom (gsr_init) and the raster, derive and verify the step counts, walk the

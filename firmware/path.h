@@ -77,14 +77,16 @@ struct path_info {
 };
 
 struct path {
-    uint8_t kind;          /* enum path_kind of the initialised iterator */
-    struct path_info info; /* valid after a successful path_init */
+    /* the iterator first, at offset 0 (its hot fields stay at Thumb's short load/store
+     * offsets when reached through the path), then the header */
     union {
         struct toolpath canal;
         struct channel_path channel;
         struct gsr_path gsr;
         struct drc_path drc;
     } u;
+    uint8_t kind;          /* enum path_kind of the initialised iterator */
+    struct path_info info; /* valid after a successful path_init */
 };
 
 /* Initialise the iterator of model `kind` on the raster (and, for the canal, the

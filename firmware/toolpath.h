@@ -64,7 +64,6 @@ enum toolpath_output {
 };
 
 struct toolpath_cfg {
-    struct canal_cfg surf; /* the surface (validated by canal_init) */
     uint8_t mode;          /* enum toolpath_mode */
     uint8_t output;        /* enum toolpath_output */
     uint8_t labels;        /* enum toolpath_labels (default ANGLE) */
@@ -81,6 +80,8 @@ struct toolpath_cfg {
     cp_real tol;           /* chord tolerance, mm, in [1e-5, 10]; required when steps == 0,
                               else 0 or the tolerance used for derived link counts */
     cp_real tool_r;        /* ball-end tool radius, mm, 0 <= tool_r < min R; 0 with OUT_SURFACE */
+    struct canal_cfg surf; /* the surface (validated by canal_init); last: the fields above
+                              stay at Thumb's short load/store offsets */
 };
 
 #define TOOLPATH_LINK_AUTO 0xFFFFu
@@ -98,7 +99,8 @@ struct toolpath_pt {
 };
 
 struct toolpath {
-    struct canal surf;
+    /* the integers first (Thumb's 16-bit loads and stores reach bytes below offset 32,
+     * halfwords below 64, words below 128), the surface last */
     uint8_t mode, output, labels, span;
     uint16_t n, steps, substeps, link;
     int32_t lab_line; /* line whose label is cached in lab_a, lab_b (-1: none) */
@@ -122,6 +124,7 @@ struct toolpath {
     uint32_t node;     /* current node index of Lambda */
     cp_real lam, comp; /* Lambda at node, Kahan compensation */
     cp_real g_node;    /* integrand g at node */
+    struct canal surf;
 };
 
 /* Validate cfg, derive step counts, walk the patch once for regularity.
