@@ -52,7 +52,6 @@ static CP_NOINLINE void bern3_d(const cp_real *c, unsigned st, cp_real s, cp_rea
 static void radius_range(const struct canal *c, cp_real *range)
 {
     const cp_real *rp = c->rp;
-    cp_real v;
     range[0] = rp[0];
     range[1] = rp[0];
     switch (c->radius) {
@@ -62,33 +61,26 @@ static void radius_range(const struct canal *c, cp_real *range)
         widen(range, rp[1]);
         break;
     case CANAL_R_COS: {
-        /* phase phi = k theta over the travelled theta interval */
-        cp_real th0, th1, ph0, ph1, s0, c0, s1, c1, b = rp[0], cc = rp[1];
+        /* b cos(phi) + c over the phase interval ph = [min, max] of phi = k theta over the
+         * travelled theta interval: its values at both ends, and b + c (cos = 1) or c - b
+         * (cos = -1) where the interval contains a phase 0 or pi (mod 2 pi) */
+        cp_real th0 = CP_R(0.0), th1 = CP_TWO_PI, ph[2], sn, cs, b = rp[0], cc = rp[1];
+        unsigned e;
         if (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) {
             th0 = (cp_real)c->dir * c->t0;
             th1 = (cp_real)c->dir * c->t1;
-        } else {
-            th0 = CP_R(0.0);
-            th1 = CP_TWO_PI;
         }
-        ph0 = rp[2] * th0;
-        ph1 = rp[2] * th1;
-        if (ph1 < ph0) {
-            v = ph0;
-            ph0 = ph1;
-            ph1 = v;
-        }
-        cp_sincos(ph0, &s0, &c0);
-        cp_sincos(ph1, &s1, &c1);
-        range[0] = b * c0 + cc;
-        range[1] = range[0];
-        widen(range, b * c1 + cc);
-        /* interior extrema of b cos(phi) + c: cos = +-1 */
-        if (contains_phase(ph0, ph1, CP_R(0.0))) {
-            widen(range, b + cc);
-        }
-        if (contains_phase(ph0, ph1, CP_PI)) {
-            widen(range, cc - b);
+        ph[0] = rp[2] * th0;
+        ph[1] = ph[0];
+        widen(ph, rp[2] * th1);
+        range[0] = CP_R(3.0e38); /* above any candidate: the first widen sets both */
+        range[1] = -CP_R(3.0e38);
+        for (e = 0; e < 2u; e++) {
+            cp_sincos(ph[e], &sn, &cs);
+            widen(range, b * cs + cc);
+            if (contains_phase(ph[0], ph[1], e ? CP_PI : CP_R(0.0))) {
+                widen(range, e ? cc - b : b + cc);
+            }
         }
         break;
     }
@@ -98,7 +90,7 @@ static void radius_range(const struct canal *c, cp_real *range)
         cp_real roots[2];
         int nr = 0, i;
         widen(range, rp[3]);
-        if (cp_fabs(qa) <= CP_R(1e-12) * (cp_fabs(qb) + cp_fabs(qc)) || qa == CP_R(0.0)) {
+        if (cp_fabs(qa) <= CP_R(1e-12) * (cp_fabs(qb) + cp_fabs(qc))) { /* qa = 0 included */
             if (qb != CP_R(0.0)) {
                 roots[nr++] = -qc / qb;
             }
@@ -123,14 +115,13 @@ static void radius_range(const struct canal *c, cp_real *range)
     }
 }
 
-static void jet_eval(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j,
-                     int second);
+static void jet_eval(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
 
 /* |C'(s)|^2 of a Bezier, from its jet (every field of c that jet_eval reads is set). */
 static cp_real bezier_speed2(const struct canal *p, cp_real s)
 {
     struct canal_jet j;
-    jet_eval(p, s, &j, 0);
+    jet_eval(p, s, &j);
     return j.dx * j.dx + j.dy * j.dy;
 }
 
@@ -181,15 +172,22 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     /* parameter i < 8 is cp[i], 8 + i is rp[i]: copy (unused ones 0), then every used one
      * finite (CP_ERR_NONFINITE wins over a range error anywhere), then in range */
     for (i = 0; i < 12u; i++) {
-        int used = i < 8u ? i < nc : i - 8u < nr;
-        cp_real v = used ? (i < 8u ? cfg->cp[i] : cfg->rp[i - 8u]) : CP_R(0.0);
-        cp_real lim = i >= na && i < 8u ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX;
-        if (i == 10u && cfg->radius == CANAL_R_COS) {
-            lim = CANAL_K_MAX;
-        }
+        cp_real v = CP_R(0.0), lim = CANAL_COORD_MAX;
         if (i < 8u) {
+            if (i < nc) {
+                v = cfg->cp[i];
+            }
+            if (i >= na) {
+                lim = CP_R(2.0) * CP_TWO_PI;
+            }
             c->cp[i] = v;
         } else {
+            if (i - 8u < nr) {
+                v = cfg->rp[i - 8u];
+            }
+            if (i == 10u && cfg->radius == CANAL_R_COS) {
+                lim = CANAL_K_MAX;
+            }
             c->rp[i - 8u] = v;
         }
         if (!cp_isfinite(v)) {
@@ -284,11 +282,10 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-/* The jet; second = 0 skips the second derivatives where they cost (they are then
- * unspecified; BEZIER and CUBIC set them anyway): the streamed point needs only C, C',
- * R, R'. One body for both (flash over speed). */
+/* The jet, second derivatives included for every kind (one body for canal_jet and
+ * canal_jet1: flash over speed; the few products they cost are all the difference). */
 static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
-                                 struct canal_jet *restrict j, int second)
+                                 struct canal_jet *restrict j)
 {
     const cp_real *p = c->cp;
     const cp_real *rp = c->rp;
@@ -299,10 +296,8 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         j->dy = p[3] - p[1];
         j->x = p[0] + t * j->dx;
         j->y = p[1] + t * j->dy;
-        if (second) {
-            j->ddx = CP_R(0.0);
-            j->ddy = CP_R(0.0);
-        }
+        j->ddx = CP_R(0.0);
+        j->ddy = CP_R(0.0);
         break;
     case CANAL_ARC: /* an ellipse with A = B = r */
     case CANAL_ELLIPSE: {
@@ -312,10 +307,8 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         j->y = p[1] + rb * sn;
         j->dx = -d * ra * sn;
         j->dy = d * rb * cs;
-        if (second) {
-            j->ddx = -ra * cs;
-            j->ddy = -rb * sn;
-        }
+        j->ddx = -ra * cs;
+        j->ddy = -rb * sn;
         break;
     }
     default: { /* CANAL_BEZIER, s = t */
@@ -362,14 +355,12 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         }
         j->r = rp[0] * cs + rp[1];
         j->dr = -rp[0] * rp[2] * sn * c->dth;
-        if (second) {
-            j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
-        }
+        j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
         break;
     default: /* CANAL_R_CUBIC */
         u = CP_R(1.0) - s;
         j->r = bern3(rp, s);
-        bern3_d(rp, 1u, s, u, &j->dr, &j->ddr); /* d/ds; ddr unused unless second */
+        bern3_d(rp, 1u, s, u, &j->dr, &j->ddr); /* d/ds, d2/ds2 */
         j->dr = j->dr * c->inv_span;
         j->ddr = j->ddr * c->inv_span * c->inv_span;
         break;
@@ -378,12 +369,12 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
 
 void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
 {
-    jet_eval(c, t, j, 1);
+    jet_eval(c, t, j);
 }
 
 void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
 {
-    jet_eval(c, t, j, 0);
+    jet_eval(c, t, j);
 }
 
 /* The fields a point needs; returns 1/|C'|. */

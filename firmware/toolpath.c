@@ -277,7 +277,7 @@ static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
     cp_real err = CP_R(0.0), ratio, p;
     uint32_t i;
     quad_reset(&tp->surf, &qc, &j);
-    quad_reset(&tp->surf, &qf, &j);
+    qf = qc;
     for (i = 0; i < RICH_COARSE; i++) {
         cp_real d;
         quad_march(tp, &qc, 2u * i, 1u, 1, hpc, &j);
