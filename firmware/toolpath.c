@@ -59,33 +59,28 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
                        int fwd, cp_real hp, struct canal_jet *j)
 {
     const cp_real w = hp / CP_R(3.0);
+    const uint32_t s = fwd ? 1u : 0xFFFFFFFFu; /* half-node step: +1 or -1 (mod 2^32) */
     uint32_t m;
     if (tp->surf.kappa_const) {
         /* C has constant curvature (ARC, LINE): Lambda = int R' kappa dt = kappa (R(t) - R(t0))
          * exactly; no quadrature, one jet at the end node (MATH-canal §6). */
-        uint32_t end = fwd ? a + 2u * npan : a - 2u * npan;
-        canal_jet(&tp->surf, t_at(tp, end, hp), j);
+        canal_jet(&tp->surf, t_at(tp, a + 2u * npan * s, hp), j);
         q->lam = tp->surf.kappa_c * (j->r - tp->r0);
         q->comp = CP_R(0.0);
         q->g = CP_R(0.0);
         return;
     }
     for (m = 0; m < npan; m++) {
-        cp_real gm, ge;
-        uint32_t mid = fwd ? a + 1u : a - 1u;
-        uint32_t end = fwd ? a + 2u : a - 2u;
-        canal_jet(&tp->surf, t_at(tp, mid, hp), j);
+        cp_real gm, ge, d;
+        canal_jet(&tp->surf, t_at(tp, a + s, hp), j);
         gm = canal_g(j);
-        canal_jet(&tp->surf, t_at(tp, end, hp), j);
+        a += 2u * s;
+        canal_jet(&tp->surf, t_at(tp, a, hp), j);
         ge = canal_g(j);
-        /* the same three samples in the same order in both directions */
-        if (fwd) {
-            kahan_add(q, w * (q->g + CP_R(4.0) * gm + ge));
-        } else {
-            kahan_add(q, -(w * (ge + CP_R(4.0) * gm + q->g)));
-        }
+        /* the same three samples in the same order in both directions: t-ascending */
+        d = w * ((fwd ? q->g : ge) + CP_R(4.0) * gm + (fwd ? ge : q->g));
+        kahan_add(q, fwd ? d : -d);
         q->g = ge;
-        a = end;
     }
 }
 
@@ -101,10 +96,12 @@ static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct
 }
 
 /* Midpoint sagitta |p1 - (p0 + p2)/2| of the points emitted for labels (h[k], b[k]) at
- * frames f[k], k = 0, 1, 2; *fin = 0 if the last point is not finite. (One emit in a
- * loop: the init walks' only copy of the point body.) */
+ * frames f[k], k = 0, 1, 2: not finite (NaN or +Inf) exactly when one of the three
+ * points is not (a non-finite coordinate makes its difference non-finite; finite points
+ * are bounded, |m| <= ~1e4 mm as in finish, so the squares cannot overflow). (One emit
+ * in a loop: the init walks' only copy of the point body.) */
 static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, const cp_real *h,
-                    const cp_real *b, int *fin)
+                    const cp_real *b)
 {
     struct canal_point p[3];
     cp_real dx, dy, dz;
@@ -115,7 +112,6 @@ static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, cons
     dx = p[1].m.x - CP_R(0.5) * (p[0].m.x + p[2].m.x);
     dy = p[1].m.y - CP_R(0.5) * (p[0].m.y + p[2].m.y);
     dz = p[1].m.z - CP_R(0.5) * (p[0].m.z + p[2].m.z);
-    *fin = cp_isfinite(p[2].m.x + p[2].m.y + p[2].m.z);
     return cp_sqrt(dx * dx + dy * dy + dz * dz);
 }
 
@@ -246,7 +242,8 @@ static cp_real label_gap(const struct canal_frame *f, cp_real ha, cp_real ba, cp
 }
 
 /* Number of uniform-angle segments so that a circular arc of radius rad and angle
- * gap has sagitta rad (1 - cos(gap / 2 segs)) <= tol. */
+ * gap has sagitta rad (1 - cos(gap / 2 segs)) <= tol, at most 70000 (0 for a zero gap:
+ * its only caller, arc_probe, keeps at least 1). */
 static uint32_t arc_segments(cp_real rad, cp_real gap, cp_real tol)
 {
     cp_real x, dmax, segs;
@@ -256,10 +253,7 @@ static uint32_t arc_segments(cp_real rad, cp_real gap, cp_real tol)
     /* 1 - cos(d/2) <= tol/rad  <=>  d <= 2 acos(1 - tol/rad) = 4 asin(sqrt(tol / 2 rad)) */
     x = cp_sqrt(tol / (CP_R(2.0) * rad));
     dmax = CP_R(4.0) * cp_atan2(x, cp_sqrt(CP_R(1.0) - x * x));
-    segs = cp_ceil(gap / (dmax * SAG_MARGIN));
-    if (segs < CP_R(1.0)) {
-        segs = CP_R(1.0);
-    }
+    segs = cp_ceil(gap / (dmax * SAG_MARGIN)); /* gap >= 0: an integer >= 0 */
     if (segs > CP_R(70000.0)) {
         segs = CP_R(70000.0);
     }
@@ -287,12 +281,10 @@ static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
     }
     /* fine error ~ |fine - coarse| / 15; panels scale as err^(1/4) */
     err = err / CP_R(15.0) * CP_R(2.0) * tp->surf.rmax;
-    if (!(err > CP_R(0.0))) {
-        return 1u;
-    }
     ratio = err / TOOLPATH_LAMBDA_TOL;
     p = CP_R(2.0) * (cp_real)RICH_COARSE * cp_sqrt(cp_sqrt(ratio)) * CP_R(1.25);
-    if (p < CP_R(1.0)) {
+    /* err 0 (p 0), or NaN (p NaN), or p in (0, 1] (ceil 1): one panel */
+    if (!(p > CP_R(1.0))) {
         return 1u;
     }
     if (p > CP_R(4.0e6)) {
@@ -330,7 +322,6 @@ static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_r
         }
         for (l = 0; l < nl; l++) {
             cp_real al, bl, s2, h[3], b[3];
-            int fin;
             if (lines) {
                 line_label(tp, l, &al, &bl);
             } else {
@@ -343,11 +334,11 @@ static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_r
                     return CP_ERR_CUSP;
                 }
             }
-            s2 = sag3(tp, f, h, b, &fin);
-            if (lines && (!cp_isfinite(s2) || !fin)) {
+            s2 = sag3(tp, f, h, b);
+            smax = s2 > smax ? s2 : smax; /* (CIRCLES: a NaN is passed over) */
+            if (lines && !cp_finite(s2)) {
                 return CP_ERR_NUMERIC;
             }
-            smax = s2 > smax ? s2 : smax;
         }
         f[0] = f[2];
         lam[0] = lam[2];
@@ -687,7 +678,7 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
      * ny, wb - 1) and rr = R - off >= rmin - tool_r > 0 (init), so a NaN or Inf in n
      * makes the matching m component non-finite too; a NaN or Inf in m makes the sum
      * non-finite, and finite components (|m| <= ~1e4 mm) cannot overflow it */
-    if (!cp_isfinite(cp->m.x + cp->m.y + cp->m.z)) {
+    if (!cp_finite(cp->m.x + cp->m.y + cp->m.z)) {
         return CP_ERR_NUMERIC;
     }
     pt->p = cp->m;
