@@ -53,6 +53,9 @@
  * any struct cp_vec3 as 3 reals */
 #define GSR_NUMS (6u * GSR_FN + 3u)
 CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
+/* sec_eval has centre_jet write the 4 vectors of the jet into s->c, t, n, b */
+CP_STATIC_ASSERT(offsetof(struct gsr_sec, b) - offsetof(struct gsr_sec, c) ==
+                     3u * sizeof(struct cp_vec3), gsr_sec_jet_contiguous);
 CP_STATIC_ASSERT(offsetof(struct gsr_cfg, ref) - offsetof(struct gsr_cfg, c) ==
                      (GSR_NUMS - 3u) * sizeof(cp_real), gsr_cfg_reals_contiguous);
 
@@ -82,6 +85,13 @@ static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real 
 {
     cp_v3_comb(V3(o), p, CV3(a), q, CV3(b));
 }
+
+/* Short loops of calls kept rolled in size builds (-Os peels them: more bytes). */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define GSR_ROLLED _Pragma("GCC unroll 1")
+#else
+#define GSR_ROLLED
+#endif
 
 /* cp_finite out of line: one copy for the checks of init, sections and points. */
 static CP_NOINLINE int fin(cp_real x)
@@ -126,6 +136,7 @@ static void sfun(const cp_real *a, cp_real x, cp_real *d)
 static CP_NOINLINE void centre_jet(const struct gsr *g, cp_real t, struct cp_vec3 *j)
 {
     unsigned ax;
+    GSR_ROLLED
     for (ax = 0; ax < 3u; ax++) {
         sfun(&g->cp[ax * GSR_FN], t, V3(j) + ax);
     }
@@ -175,11 +186,12 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
 {
     const struct gsr_cfg *cf = g->cfg;
     const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
-    struct cp_vec3 j[4];
+    struct cp_vec3 d2;
     struct pframe pf;
-    cp_real f[4][3], sp, s2, q, w, cs[2] = {CP_R(1.0), CP_R(0.0)};
+    cp_real f[4][3], sp, s2, q, w, ty, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
     int err = CP_OK;
+    GSR_ROLLED
     for (i = 0; i < 3u; i++) { /* f[k][i]: k-th derivative of f_N, f_B, f_t */
         sfun(cf->r[i], u, &f[0][i]);
     }
@@ -188,21 +200,23 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     s->dfn = f[1][0];
     s->dfb = f[1][1];
     s->ft = f[0][2];
-    centre_jet(g, f[0][2], j);
-    s->c = j[0];
-    s->t = j[1];
-    s2 = dot(&j[1], &j[1]);
+    /* the centre jet C, C', C'', C''' straight into s->c, t, n, b (n and b hold C'' and
+     * C''' until the frame overwrites them: C'' is kept in d2, C''' read by proj first) */
+    centre_jet(g, f[0][2], &s->c);
+    d2 = s->n;
+    ty = s->t.y;
+    s2 = dot(&s->t, &s->t);
     sp = unit(&s->t);
     s->ts = f[1][2] * sp;
     if (g->frame == GSR_FRAME_FRENET) {
-        ax = &j[2];
-        ad = &j[3];
+        ax = &d2;
+        ad = &s->b;
     } else if (g->frame == GSR_FRAME_FIXED) {
         ax = &ey;
         cs[0] = CP_R(0.0);
         cs[1] = CP_R(-1.0);
     }
-    q = proj(ax, ad, &s->t, &j[2], sp, &pf);
+    q = proj(ax, ad, &s->t, &d2, sp, &pf);
     if (g->frame == GSR_FRAME_RMF) {
         cp_sincos(rmf_phi(g, f[0][2]), &cs[1], &cs[0]);
         pf.w = CP_R(0.0);
@@ -210,10 +224,10 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
     cross(&s->t, &s->n, &s->b);
     s->tw = s->ts * pf.w;
-    s->k1 = dot(&j[2], &s->n) / s2;
-    s->k2 = dot(&j[2], &s->b) / s2;
+    s->k1 = dot(&d2, &s->n) / s2;
+    s->k2 = dot(&d2, &s->b) / s2;
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
-    if (g->frame == GSR_FRAME_FIXED && j[1].y != CP_R(0.0)) {
+    if (g->frame == GSR_FRAME_FIXED && ty != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
     } else if (!(f[0][2] >= CP_R(0.0) && f[0][2] <= CP_R(1.0) && f[1][2] >= CP_R(0.0))) {
         err = CP_ERR_FT_RANGE;
@@ -223,7 +237,9 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         err = CP_ERR_DEGENERATE;
     } else if (!(q > GSR_EPS * GSR_EPS)) {
         err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
-    } else if (!fin(s->c.x + s->c.y + s->c.z + s->n.x + s->n.y + s->n.z + s->tw + w)) {
+    } else if (!fin(dot(&s->c, &s->n) + s->tw + w)) {
+        /* C.N is finite iff C and N are (|C| <= ~1e5 mm from the coefficient limits, |N|
+         * = 1: no product overflows; an Inf or NaN component makes a product Inf or NaN) */
         err = CP_ERR_NUMERIC;
     } else if (!(w < CP_R(1.0))) {
         err = CP_ERR_FOLD;
@@ -242,11 +258,12 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     struct cp_vec3 j[4];
     struct pframe pf;
     cp_real span = g->t1 - g->t0, f[3] = {CP_R(0.0), CP_R(0.0), CP_R(0.0)}, phi = CP_R(0.0),
-            pm = CP_R(0.0), worst = CP_R(0.0), w, sp;
+            pm = CP_R(0.0), tm = CP_R(0.0), worst = CP_R(0.0), w, sp, t;
     uint32_t i;
     g->ih = (cp_real)GSR_RMF_N / span;
     for (i = 0; i <= total; i++) {
-        centre_jet(g, g->t0 + span * ((cp_real)i / (cp_real)total), j);
+        t = g->t0 + span * ((cp_real)i / (cp_real)total);
+        centre_jet(g, t, j);
         sp = unit(&j[1]);
         if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &pf) > GSR_EPS * GSR_EPS)) {
             return CP_R(-1.0);
@@ -258,13 +275,13 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
             phi += span / (cp_real)(3u * total) * (f[0] + CP_R(4.0) * f[1] + f[2]);
         }
         if (i % GSR_RMF_SUB == GSR_RMF_SUB / 2u) {
-            pm = phi;
+            pm = phi; /* and its t, checked at the next node */
+            tm = t;
         } else if (i % GSR_RMF_SUB == 0u) {
             g->rmf[i / GSR_RMF_SUB][0] = phi;
             g->rmf[i / GSR_RMF_SUB][1] = f[2] / g->ih;
             if (i > 0u) {
-                w = cp_fabs(rmf_phi(g, g->t0 + span * ((cp_real)(i - GSR_RMF_SUB / 2u) /
-                                                        (cp_real)total)) - pm);
+                w = cp_fabs(rmf_phi(g, tm) - pm);
                 /* NaN is sticky (w > NaN is false): a NaN error fails CP_ERR_TOL */
                 worst = (w > worst || !fin(w)) ? w : worst;
             }
@@ -619,7 +636,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
         pt->p.z -= r;
     }
     g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
-    if (err == CP_OK && !fin(pt->p.x + pt->p.y + pt->p.z + g)) {
+    if (err == CP_OK && !fin(dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
         err = CP_ERR_NUMERIC;
     }
     return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;
