@@ -330,7 +330,9 @@ static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_r
             for (k = 0; k < 3u; k++) {
                 h[k] = label_h(tp, &f[k], lam[k], al, bl);
                 b[k] = bl;
-                if (lines && k >= (i == 0u ? 0u : 1u) && !regular(tp, &f[k], h[k], bl)) {
+                /* (a step's node k = 0 is the last step's k = 2, same inputs: checked
+                 * twice, the same verdict; cheaper in flash than skipping it) */
+                if (lines && !regular(tp, &f[k], h[k], bl)) {
                     return CP_ERR_CUSP;
                 }
             }
