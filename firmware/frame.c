@@ -40,7 +40,9 @@ uint32_t frame_get_u32(const uint8_t *p)
     return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
 
-int frame_encode(uint8_t seq, uint8_t type, const uint8_t *payload, size_t plen, uint8_t *out,
+/* Out of line: inlined into its one caller (LTO) the payload loop becomes a memcpy call
+ * and links the library's memcpy into the image. */
+CP_NOINLINE int frame_encode(uint8_t seq, uint8_t type, const uint8_t *payload, size_t plen, uint8_t *out,
                  size_t cap)
 {
     size_t len = plen + FRAME_OVERHEAD, i;

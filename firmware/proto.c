@@ -199,7 +199,7 @@ static void run_finish(struct proto *p, int status)
 static int run_start(struct proto *p, uint32_t first)
 {
     int err;
-    uint32_t npts;
+    uint32_t npts, v[5]; /* v[0]: the points of the job; v[1..4]: the [RUN:...] line */
     if (job_ready(&p->job) != CP_ST_OK) {
         return CP_ST_NO_JOB;
     }
@@ -207,13 +207,14 @@ static int run_start(struct proto *p, uint32_t first)
     if (err != CP_OK) {
         return job_status_of(err);
     }
-    if (first >= path_count(&p->path)) {
+    v[0] = path_count(&p->path);
+    if (first >= v[0]) {
         return CP_ST_RESUME_RANGE;
     }
     if (first > 0u && path_seek(&p->path, first) != CP_OK) {
         return CP_ST_RESUME_RANGE;
     }
-    npts = path_count(&p->path) - first;
+    npts = v[0] - first;
     p->fmt = p->job.format;
     p->start_k = first;
     p->next = 0;
@@ -234,8 +235,6 @@ static int run_start(struct proto *p, uint32_t first)
     if (p->fmt == JOB_GCODE) {
         /* what the stream will hold, for hosts and judges (a G-code machine skips
          * '[' lines; this one is not counted against its RX buffer) */
-        uint32_t v[5];
-        v[0] = path_count(&p->path);
         v[1] = first;
         v[2] = p->path.info.n;
         v[3] = p->path.info.steps;
@@ -267,7 +266,8 @@ static CP_NOINLINE int32_t quantize(cp_real v, cp_real scale)
  * line is N<idx>: N0 M110 N0, N1 G21 G90 G17, N2 the first point... The longest line,
  * "N<10 digits> G1 X<12> Y<12> Z<12> F<12>*<3 digits>\n" (a coordinate or feed is an
  * int32 count with its sign and point: 12 bytes), is 75 bytes, so no append below can
- * fail (they are bounded by pend[] anyway). */
+ * fail (they are bounded by pend[] anyway; the single bytes are stored directly, 75 <
+ * PROTO_GCODE_MAX leaves room for each). */
 CP_STATIC_ASSERT(12 + 4 + 12 + 3 * (2 + 12) + 4 + 1 <= PROTO_GCODE_MAX, gcode_line_fits);
 static int gcode_line(struct proto *p, uint32_t idx)
 {
@@ -275,14 +275,12 @@ static int gcode_line(struct proto *p, uint32_t idx)
     const size_t cap = sizeof p->pend;
     size_t pos = 0;
     if (p->job.checksum) {
-        (void)fmt_str(out, cap, &pos, "N");
+        out[pos++] = 'N';
         (void)fmt_u32(out, cap, &pos, idx);
-        (void)fmt_str(out, cap, &pos, " ");
+        out[pos++] = ' ';
     }
-    if (idx + 2u == p->hdr) {
-        (void)fmt_str(out, cap, &pos, "M110 N0");
-    } else if (idx + 1u == p->hdr) {
-        (void)fmt_str(out, cap, &pos, "G21 G90 G17");
+    if (idx < p->hdr) { /* idx + 2 == hdr: M110 (checksums only); idx + 1 == hdr: G21 */
+        (void)fmt_str(out, cap, &pos, idx + 2u == p->hdr ? "M110 N0" : "G21 G90 G17");
     } else {
         static const char word[4][5] = {"G1 X", " Y", " Z", " F"};
         struct toolpath_pt pt;
@@ -309,10 +307,10 @@ static int gcode_line(struct proto *p, uint32_t idx)
         for (i = 0; i < pos; i++) {
             cs ^= (uint8_t)out[i];
         }
-        (void)fmt_str(out, cap, &pos, "*");
+        out[pos++] = '*';
         (void)fmt_u32(out, cap, &pos, cs);
     }
-    (void)fmt_str(out, cap, &pos, "\n");
+    out[pos++] = '\n';
     return (int)pos;
 }
 
@@ -323,6 +321,8 @@ static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, 
 {
     uint8_t pl[FRAME_POINT_PAYLOAD];
     uint32_t npts = p->end - 2u, sent = idx > 0u ? idx - 1u : 0u;
+    uint8_t type = FRAME_END;
+    size_t plen = 5u;
     if (status != CP_ST_OK) {
         /* END below */
     } else if (idx == 0u) {
@@ -332,7 +332,8 @@ static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, 
         frame_put_u16(pl + 10, p->path.info.steps);
         frame_put_u16(pl + 12, p->path.info.link);
         pl[14] = p->path.info.mode;
-        return frame_encode((uint8_t)idx, FRAME_BEGIN, pl, 15u, out, cap);
+        type = FRAME_BEGIN;
+        plen = 15u;
     } else if (idx <= npts) {
         struct toolpath_pt pt;
         uint32_t k = p->start_k + idx - 1u;
@@ -355,11 +356,14 @@ static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, 
         }
         frame_put_u16(pl + 22, (uint16_t)pt.line);
         frame_put_u16(pl + 24, pt.index);
-        return frame_encode((uint8_t)idx, FRAME_POINT, pl, FRAME_POINT_PAYLOAD, out, cap);
+        type = FRAME_POINT;
+        plen = FRAME_POINT_PAYLOAD;
     }
-    pl[0] = (uint8_t)status;
-    frame_put_u32(pl + 1, sent < npts ? sent : npts); /* the whole run: idx = npts + 1 */
-    return frame_encode((uint8_t)idx, FRAME_END, pl, 5u, out, cap);
+    if (type == FRAME_END) {
+        pl[0] = (uint8_t)status;
+        frame_put_u32(pl + 1, sent < npts ? sent : npts); /* the whole run: idx = npts + 1 */
+    }
+    return frame_encode((uint8_t)idx, type, pl, plen, out, cap);
 }
 
 /* Emit at most one stream item if flow control allows. Returns 1 if one was sent. */
