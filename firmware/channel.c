@@ -156,12 +156,7 @@ static cp_real norm(const cp_real *a)
 /* v /= |v|; returns |v|. */
 static cp_real unit(cp_real *v)
 {
-    cp_real n = norm(v);
-    unsigned k;
-    for (k = 0; k < 3u; k++) {
-        v[k] /= n;
-    }
-    return n;
+    return cp_v3_unit(v);
 }
 
 /* a + k pi nearest ref (unwrapping mod pi). */

@@ -7,6 +7,7 @@
  * the calls that are not inlined). */
 extern cp_real cp_v3_dot(const cp_real *a, const cp_real *b);
 extern cp_real cp_v3_norm(const cp_real *a);
+extern cp_real cp_v3_unit(cp_real *v);
 extern void cp_v3_sub(const cp_real *a, const cp_real *b, cp_real *o);
 extern void cp_v3_cross(const cp_real *a, const cp_real *b, cp_real *o);
 extern void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const cp_real *b);

@@ -195,6 +195,17 @@ inline void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const
     o[2] = p * a[2] + q * b[2];
 }
 
+/* v /= |v| as v * (1 / |v|) (one division); returns |v| (|v| = 0: v becomes NaN, the
+ * callers check). Each component: 2 roundings beyond the norm's relative error. */
+inline cp_real cp_v3_unit(cp_real *v)
+{
+    cp_real l = cp_v3_norm(v), f = CP_R(1.0) / l;
+    v[0] *= f;
+    v[1] *= f;
+    v[2] *= f;
+    return l;
+}
+
 /* 1 if x is finite: x - x is 0, and NaN for an infinity or a NaN (cp_isfinite's
  * answer in one comparison). */
 inline int cp_finite(cp_real x)

@@ -102,11 +102,7 @@ static CP_NOINLINE int fin(cp_real x)
 /* Normalize v (each component times 1/|v|); returns its former length. */
 static cp_real unit(struct cp_vec3 *v)
 {
-    cp_real l = cp_v3_norm(CV3(v)), f = CP_R(1.0) / l;
-    v->x *= f;
-    v->y *= f;
-    v->z *= f;
-    return l;
+    return cp_v3_unit((cp_real *)v);
 }
 
 /* Scalar family at x: d[0], d[3], d[6], d[9] = f, f', f'', f''' (stride 3: one component
