@@ -133,8 +133,8 @@ identical)
     ;;
 models)
     # the seed 001-003 models (SURFACE GSR | CHANNEL | DRC): every tests/jobs/model_<m>_*.job,
-    # judged, natively (all models) and under QEMU (image fw-<m>.elf), and the two raw
-    # RUN streams byte-identical
+    # judged, natively (all models) and under QEMU (the product image fw.elf: all four
+    # models), and the two raw RUN streams byte-identical
     for f in "$J"/model_*.job; do
         [ -f "$f" ] || continue
         job=$(basename "$f" .job)
@@ -149,9 +149,8 @@ models)
         if [ $r0 -eq 1 ] && grep -q "FAIL judge $m-" "$OUT/${job}_wrong.out"; then r0=0; else r0=1; fi
         result "${job}_judge_fails" $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge $m-[a-z]*" "$OUT/${job}_wrong.out" | tr '\n' ' '))"
         if command -v "$QEMU" >/dev/null 2>&1; then
-            # the product image of that model: the canal + model <m> (mk/m4f.mk fw-<m>.elf)
-            m=${job#model_}; m=${m%%_*}
-            ELF=$B/m4f/fw-$m.elf
+            # the product image, all four models (mk/m4f.mk: fw.elf = fw-all.elf)
+            ELF=$B/m4f/fw.elf
             hs "${job}_qemu" qemu --job "$f" --csv "$OUT/${job}_qemu.csv" --raw "$OUT/${job}_qemu.raw"
             r2=$?
             result "${job}_qemu" $r2 "$(figs "${job}_qemu")"

@@ -101,8 +101,8 @@ sim-robust: $(BUILD)/host/host_sim $(BUILD)/host/fw_fake
 # RUN suites (host_sim/sim_suite.sh): each prints "<word>: N passed, N failed"
 .PHONY: sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models
 
-## sim-models: every tests/jobs/model_<m>_*.job (GSR, CHANNEL, DRC) judged, native and QEMU (image fw-<m>.elf), streams identical (word "models")
-sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim $(foreach s,gsr channel drc,$(BUILD)/m4f/fw-$(s).elf)
+## sim-models: every tests/jobs/model_<m>_*.job (GSR, CHANNEL, DRC) judged, native and QEMU (fw.elf, all models), streams identical (word "models")
+sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh models
 
 ## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")

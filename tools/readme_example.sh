@@ -15,7 +15,7 @@ d=$BUILD/readme; mkdir -p "$d"
     echo 'return n_sent == 0 || n_sent != toolpath_count(&tp); }'
 } > "$d/example.c"
 if ${CC:-cc} -std=c99 -Wall -Wextra -Werror -Wno-unused-result -Ifirmware -Ihal -o "$d/example" "$d/example.c" \
-        firmware/canal.c firmware/toolpath.c firmware/cp_math.c -lm && "$d/example"; then
+        firmware/canal.c firmware/toolpath.c firmware/raster.c firmware/cp_math.c -lm && "$d/example"; then
     echo "readme: 1 passed, 0 failed"
 else
     echo "readme: 0 passed, 1 failed"; exit 1
