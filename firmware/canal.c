@@ -115,13 +115,14 @@ static void radius_range(const struct canal *c, cp_real *range)
     }
 }
 
-static void jet_eval(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
+static void jet_eval(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j,
+                     int second);
 
 /* |C'(s)|^2 of a Bezier, from its jet (every field of c that jet_eval reads is set). */
 static cp_real bezier_speed2(const struct canal *p, cp_real s)
 {
     struct canal_jet j;
-    jet_eval(p, s, &j);
+    jet_eval(p, s, &j, 0);
     return j.dx * j.dx + j.dy * j.dy;
 }
 
@@ -282,10 +283,11 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-/* The jet, second derivatives included for every kind (one body for canal_jet and
- * canal_jet1: flash over speed; the few products they cost are all the difference). */
+/* The jet; second = 0 skips the second derivatives where they cost (they are then
+ * unspecified; BEZIER and CUBIC set them anyway): the streamed point needs only C, C',
+ * R, R'. One body for both (flash over speed). */
 static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
-                                 struct canal_jet *restrict j)
+                                 struct canal_jet *restrict j, int second)
 {
     const cp_real *p = c->cp;
     const cp_real *rp = c->rp;
@@ -296,8 +298,10 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         j->dy = p[3] - p[1];
         j->x = p[0] + t * j->dx;
         j->y = p[1] + t * j->dy;
-        j->ddx = CP_R(0.0);
-        j->ddy = CP_R(0.0);
+        if (second) {
+            j->ddx = CP_R(0.0);
+            j->ddy = CP_R(0.0);
+        }
         break;
     case CANAL_ARC: /* an ellipse with A = B = r */
     case CANAL_ELLIPSE: {
@@ -307,8 +311,10 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         j->y = p[1] + rb * sn;
         j->dx = -d * ra * sn;
         j->dy = d * rb * cs;
-        j->ddx = -ra * cs;
-        j->ddy = -rb * sn;
+        if (second) {
+            j->ddx = -ra * cs;
+            j->ddy = -rb * sn;
+        }
         break;
     }
     default: { /* CANAL_BEZIER, s = t */
@@ -355,12 +361,14 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
         }
         j->r = rp[0] * cs + rp[1];
         j->dr = -rp[0] * rp[2] * sn * c->dth;
-        j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
+        if (second) {
+            j->ddr = -rp[0] * rp[2] * rp[2] * cs * c->dth * c->dth;
+        }
         break;
     default: /* CANAL_R_CUBIC */
         u = CP_R(1.0) - s;
         j->r = bern3(rp, s);
-        bern3_d(rp, 1u, s, u, &j->dr, &j->ddr); /* d/ds, d2/ds2 */
+        bern3_d(rp, 1u, s, u, &j->dr, &j->ddr); /* d/ds; ddr unused unless second */
         j->dr = j->dr * c->inv_span;
         j->ddr = j->ddr * c->inv_span * c->inv_span;
         break;
@@ -369,12 +377,12 @@ static CP_NOINLINE void jet_eval(const struct canal *restrict c, cp_real t,
 
 void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
 {
-    jet_eval(c, t, j);
+    jet_eval(c, t, j, 1);
 }
 
 void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j)
 {
-    jet_eval(c, t, j);
+    jet_eval(c, t, j, 0);
 }
 
 /* The fields a point needs; returns 1/|C'|. */
