@@ -79,6 +79,14 @@ $(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%
 -include mk/fuzz.mk
 -include mk/hardening.mk
 
+## stream-diff: BASE=<git ref>: firmware replies and streams byte-identical to BASE's (tools/stream_diff.sh; word "stream-diff")
+.PHONY: stream-diff
+stream-diff:
+	$(Q)test -n "$(BASE)" || { echo "stream-diff: BASE=<git ref> is required"; echo "stream-diff: 0 passed, 1 failed"; exit 1; }
+	$(Q)rm -rf $(BUILD)/stream_diff_base && mkdir -p $(BUILD)/stream_diff_base && \
+	    git archive "$(BASE)" | tar -x -C $(BUILD)/stream_diff_base
+	$(Q)sh tools/stream_diff.sh $(BUILD)/stream_diff_base .
+
 ## check: every test and guard; ends with one "N passed, N failed" line
 check:
 	$(Q)sh tools/check.sh
