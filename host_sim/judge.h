@@ -1,17 +1,30 @@
-/* judge.h - host_sim's judges of the models other than the canal (seeds 001-003).
+/* judge.h - host_sim's judges: one per surface model, one row each in sim_check.c's table.
  * SPDX-License-Identifier: MIT
  *
- * sim_check.c judges the canal itself and forwards to judge_<m>_* while the job's
- * SURFACE is <m> (SURFACE GSR | CHANNEL | DRC, docs/PROTOCOL.md). Each judge keeps
- * its own independent double-precision model (tests/ref_<m>.c, no firmware code)
- * and has the same contract as the sim_check_* function of the same suffix
- * (sim_check.h): job_line sees EVERY job line sent while its SURFACE is active
- * (its own geometry commands and the shared raster commands TOOL, LINES, CIRCLES,
- * STEPS, TOL, FEED, FORMAT, ...), returns 0 (modelled or not a job line), 1 (bad
- * arguments: the firmware must answer error, model unchanged) or -1 (cannot
- * model: the run is reported unchecked). reset is called on `SURFACE <m>` (the
- * firmware starts that model's geometry afresh); report prints its table rows and
- * adds its checks to the counts (coverage always counted, like the canal judge).
+ * The rows come from firmware/models.def (CP_MODEL(NAME, name, WITH, "WORD")): model
+ * <name> is judged by host_sim/judge_<name>.c, which defines the judge_<name>_* hooks
+ * below, and its row is { "WORD", judge_<name>_reset, ..., judge_<name>_report }. Every
+ * row is compiled in whatever WITH says (host_sim judges any firmware image; an image
+ * without the model answers SURFACE <WORD> with an error). Each judge keeps its own
+ * independent double-precision model (tests/ref_<name>.c, no firmware code).
+ *
+ * sim_check.c (sim_check.h) owns what is model-independent: the SURFACE word picks the
+ * row; runs, points and run ends go to that row only; the report asks every row.
+ * Row 0 (the canal) is the firmware's base job: the raster commands (TOOL, LINES,
+ * CIRCLES, STEPS, TOL, ...) stay in it whatever the SURFACE, so it also sees every job
+ * line while another model is active.
+ *
+ * The hooks, with the contract of the sim_check_* function of the same suffix:
+ *   reset(session)  session = 1: once, before anything (the whole judge afresh);
+ *                   session = 0: on `SURFACE <WORD>` (the firmware starts that model's
+ *                   geometry afresh; the raster commands stay)
+ *   job_line(line)  EVERY job line sent while its SURFACE is active (its own geometry
+ *                   commands and the shared raster commands); 0 (modelled or not a job
+ *                   line), 1 (bad arguments: the firmware must answer error, model
+ *                   unchanged) or -1 (cannot model: the run is reported unchecked)
+ *   run_begin, point, run_end   the runs of its SURFACE only
+ *   report(f, passed, failed)   its table rows, its checks added to the counts; nothing
+ *                   when it judged no run (sim_check.c prints the "no run" line)
  */
 #ifndef JUDGE_H
 #define JUDGE_H
@@ -20,8 +33,19 @@
 #include <stdint.h>
 #include <stdio.h>
 
+struct judge {
+    const char *word; /* SURFACE keyword, models.def "WORD" */
+    void (*reset)(int session);
+    int (*job_line)(const char *line);
+    void (*run_begin)(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
+                      unsigned link);
+    void (*point)(uint32_t k, double x, double y, double z, const double *n);
+    void (*run_end)(int complete);
+    void (*report)(FILE *f, int *passed, int *failed);
+};
+
 #define JUDGE_DECLARE(m)                                                                          \
-    void judge_##m##_reset(void);                                                                 \
+    void judge_##m##_reset(int session);                                                          \
     int judge_##m##_job_line(const char *line);                                                   \
     void judge_##m##_run_begin(uint32_t points, uint32_t first, int mode, unsigned n,             \
                                unsigned steps, unsigned link);                                    \
@@ -29,12 +53,21 @@
     void judge_##m##_run_end(int complete);                                                       \
     void judge_##m##_report(FILE *f, int *passed, int *failed);
 
-JUDGE_DECLARE(gsr)
-JUDGE_DECLARE(channel)
-JUDGE_DECLARE(drc)
+#define CP_MODEL(NAME, name, WITH, WORD) JUDGE_DECLARE(name)
+#include "models.def"
+#undef CP_MODEL
+
+/* The canal's surface for sim_out.c's SVG (no tool offset) at normalized parameter tf in
+ * [0, 1] and contact-frame angle u (radians), mm. 0 if CURVE/RADIUS are not modelled. */
+int judge_canal_surface(double tf, double u, double p[3]);
+/* The canal raster's angle range u0 <= u1 (radians, as in LINES/CIRCLES). 0 if none. */
+int judge_canal_urange(double *u0, double *u1);
 
 /* Helpers shared by the judges (judge_util.c). */
 #define JUDGE_MAX_TOKENS 24u
+/* Split buf in place at spaces, tabs, CR and LF. Returns the number of tokens; the first
+ * max + 1 of them are stored in tok (which holds max + 1 pointers). */
+unsigned judge_words(char *buf, char **tok, unsigned max);
 /* Split a job line into at most JUDGE_MAX_TOKENS tokens (spaces, tabs, CR, LF; a token
  * starting with '#' ends the line) in buf (>= strlen(line) + 1 bytes). Returns the
  * count, or -1 if the line does not fit buf. */

@@ -48,8 +48,9 @@ static struct {
     int prev_line;
 } run;
 
-void judge_channel_reset(void)
+void judge_channel_reset(int session)
 {
+    (void)session; /* the whole model afresh, both at session start and on SURFACE CHANNEL */
     memset(&jb, 0, sizeof jb);
     jb.n = 1;
     jb.tol = 0.001;

@@ -49,8 +49,9 @@ static struct {
     double stot;
 } run;
 
-void judge_drc_reset(void)
+void judge_drc_reset(int session)
 {
+    (void)session; /* the whole model afresh, both at session start and on SURFACE DRC */
     memset(&jb, 0, sizeof jb);
     jb.k = -1;
     jb.lines = 1;

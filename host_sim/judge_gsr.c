@@ -60,15 +60,14 @@ static unsigned runs, runs_complete;
 static unsigned long cov_err, pts;
 static int chord_info;
 
-/* SURFACE GSR: the geometry starts afresh (the raster commands stay, as in the firmware). */
-void judge_gsr_reset(void)
+/* session: everything afresh; SURFACE GSR: the geometry starts afresh (the raster commands
+ * stay, as in the firmware). */
+void judge_gsr_reset(int session)
 {
-    static int init;
-    if (!init) {
+    if (session) {
         memset(&jb, 0, sizeof jb);
         jb.n = 1;
         jb.tol = 1e-3;
-        init = 1;
     }
     memset(jb.c, 0, sizeof jb.c);
     memset(jb.r, 0, sizeof jb.r);

@@ -1,4 +1,4 @@
-/* judge_util.c - helpers shared by the model judges (judge.h).
+/* judge_util.c - helpers shared by the judges and sim_check.c (judge.h).
  * SPDX-License-Identifier: MIT
  */
 #include "judge.h"
@@ -23,6 +23,28 @@ int judge_split(const char *line, char *buf, size_t bufsz, char **tok)
             break;
         }
         tok[nt++] = p;
+    }
+    return nt;
+}
+
+unsigned judge_words(char *buf, char **tok, unsigned max)
+{
+    char *p = buf;
+    unsigned nt = 0;
+    while (*p) {
+        while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') {
+            *p++ = '\0';
+        }
+        if (*p == '\0') {
+            break;
+        }
+        if (nt <= max) {
+            tok[nt] = p;
+        }
+        nt++;
+        while (*p && *p != ' ' && *p != '\t' && *p != '\r' && *p != '\n') {
+            p++;
+        }
     }
     return nt;
 }

@@ -1,18 +1,20 @@
 /* sim_check.h - host_sim as the judge: every received point against host_sim's own
- * independent double-precision model (tests/ref_canal.c: adaptive integration of
- * the orthogonal-trajectory ODE; no firmware code).
+ * independent double-precision model of the job's surface model (tests/ref_<m>.c; no
+ * firmware code). This is the model-independent front: the SURFACE word picks a row of
+ * the judge table (judge.h, one row per firmware/models.def line, judge_<m>.c).
  * SPDX-License-Identifier: MIT
  *
  * Call order, per run of host_sim:
  *   sim_check_init()
- *   sim_check_job_line(line)     for every job command line sent (CURVE, RADIUS, TOOL,
- *                                LINES, CIRCLES, STEPS, TOL, ...; others are ignored)
+ *   sim_check_job_line(line)     for every job command line sent (SURFACE, CURVE, RADIUS,
+ *                                TOOL, LINES, CIRCLES, STEPS, TOL, ...; others are ignored)
  *   per RUN / RESUME:
  *     sim_check_run_begin(...)   from the "[RUN:...]" header (GCODE) or BEGIN frame (FRAMES)
  *     sim_check_point(k, ...)    for every received point, in arrival order
  *     sim_check_run_end()        coverage of this run
  *   sim_check_report(...)        prints the table and adds its checks to the counts
- * Checks (each one a pass/fail line in the table, with max and RMS):
+ * Checks of the canal judge (judge_canal.c; the other judges' in their files), each one a
+ * pass/fail line in the table, with max and RMS:
  *   surface   distance of the point (tool centre recovered for TOOL outputs) to the
  *             canal (offset) surface, i.e. | |p - rho(t)| - (R(t) - r_tool) |
  *   line      distance to the true curvature line: the reference point of the same
@@ -54,12 +56,5 @@ void sim_check_run_end(int complete);
  * limit) are printed as INFO and not counted; normal only when normals arrived
  * (FRAMES); coverage is always counted. No run at all: one line, nothing counted. */
 void sim_check_report(FILE *f, int *passed, int *failed);
-
-/* The surface of the modelled job (no tool offset) at normalized parameter tf in [0, 1]
- * and contact-frame angle u (radians), mm. Returns 0 if CURVE/RADIUS are not modelled. */
-int sim_check_surface(double tf, double u, double p[3]);
-
-/* The raster's angle range u0 <= u1 (radians, as in LINES/CIRCLES). 0 if none. */
-int sim_check_urange(double *u0, double *u1);
 
 #endif /* SIM_CHECK_H */

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sim_check.h"
+#include "judge.h"
 #include <string.h>
 
 #include "sim_out.h"
@@ -135,7 +135,7 @@ static void svg_write(const char *path)
      * (t = const) over the raster's angle range widened by half, and the contact
      * curve C (u = 0), from the judge's own model; drawn faint, behind the path */
     ngrid = 0;
-    if (sim_check_urange(&ga, &gb)) {
+    if (judge_canal_urange(&ga, &gb)) {
         double w = 0.5 * (gb - ga) + 0.05;
         int c, q;
         ga = ga - w < -3.0 ? -3.0 : ga - w;
@@ -143,7 +143,7 @@ static void svg_write(const char *path)
         for (c = 0; c <= SVG_GRID_T; c++) { /* circles */
             for (q = 0; q <= SVG_GRID_U; q++) {
                 double P[3];
-                if (!sim_check_surface((double)c / SVG_GRID_T, ga + (gb - ga) * q / SVG_GRID_U, P)) {
+                if (!judge_canal_surface((double)c / SVG_GRID_T, ga + (gb - ga) * q / SVG_GRID_U, P)) {
                     break;
                 }
                 grid[ngrid].x = (int32_t)(P[0] * 1e4);
@@ -154,7 +154,7 @@ static void svg_write(const char *path)
         }
         for (q = 0; q <= SVG_GRID_C && ngrid > 0; q++) { /* C itself */
             double P[3];
-            (void)sim_check_surface((double)q / SVG_GRID_C, 0.0, P);
+            (void)judge_canal_surface((double)q / SVG_GRID_C, 0.0, P);
             grid[ngrid].x = (int32_t)(P[0] * 1e4);
             grid[ngrid].y = (int32_t)(P[1] * 1e4);
             grid[ngrid].z = (int32_t)(P[2] * 1e4);
