@@ -877,17 +877,12 @@ void judge_canal_run_begin(uint32_t points, uint32_t first, int mode, unsigned n
     }
 }
 
-void judge_canal_point(uint32_t k, double x, double y, double z, const double *n)
+/* Coverage of point k (order, range, twice). 1 if its geometry is to be judged. */
+static int point_coverage(uint32_t k)
 {
-    struct timespec t_a, t_b;
-    struct pt cur;
-    struct seg sg;
-    int have_prev;
-    clock_gettime(CLOCK_MONOTONIC, &t_a);
-    points_seen++;
     if (!run.active) {
         cov_err("point outside a run", k);
-        goto out;
+        return 0;
     }
     if (k != run.next) {
         cov.out_of_order++;
@@ -897,7 +892,7 @@ void judge_canal_point(uint32_t k, double x, double y, double z, const double *n
     if (k >= run.points) {
         cov.out_of_range++;
         cov_err("point beyond the job", k);
-        goto out;
+        return 0;
     }
     if (pass.open && k < SC_MAX_POINTS) {
         if (seen[k]) {
@@ -907,9 +902,73 @@ void judge_canal_point(uint32_t k, double x, double y, double z, const double *n
             seen[k] = 1;
         }
     }
-    if (!run.geom) {
-        goto out;
+    return run.geom;
+}
+
+/* The contact angle of point k where it depends on integrated lines (after the chord
+ * sampling, which moved the line states on). -1 if the reference integration failed. */
+static int point_angle(uint32_t k, struct pt *cur, const struct seg *sg)
+{
+    if (run.mode == 0 && cur->on_line >= 0) {
+        return line_u((unsigned)cur->on_line, cur->t, &cur->u);
     }
+    if (run.mode == 1) {
+        uint32_t block = run.steps + 1u + run.link, r = k % block;
+        if (r <= run.steps && sg->kind == SEG_LINE) { /* circle start after a PATCH link */
+            unsigned i = (k / block) & 1u ? run.steps - r : r;
+            double lo, hi;
+            if (bound_u(0u, cur->t, &lo) || bound_u(1u, cur->t, &hi)) {
+                return -1;
+            }
+            cur->u = lo + route(hi - lo) * (double)i / (double)run.steps;
+            cur->on_line = (i == 0u) ? 0 : (i == run.steps ? 1 : -1);
+        } else if (r > run.steps && job.patch) {
+            return line_u((unsigned)cur->on_line, cur->t, &cur->u);
+        }
+    }
+    return 0;
+}
+
+/* surface, line and normal of the located point cur (n: received normal or NULL); its line
+ * tangent for the ortho check. */
+static void point_checks(struct pt *cur, const double *n)
+{
+    double nref[3], rho[3], c[3], e;
+    struct ref_jet jt;
+    uint32_t k = cur->k;
+    emit(cur->t, cur->u, cur->M, nref);
+    /* surface: the tool centre recovered from the point */
+    ref_jet(&rc, cur->t, &jt);
+    rho[0] = jt.x;
+    rho[1] = jt.y;
+    rho[2] = jt.r;
+    c[0] = cur->P[0];
+    c[1] = cur->P[1];
+    c[2] = cur->P[2] + (job.output == OUT_TIP ? job.tool_r : 0.0);
+    e = fabs(dist3(c, rho) - (jt.r - job.tool_r));
+    stat_add(CK_SURF, e, !(e <= SC_LIM_SURF), k);
+    e = dist3(cur->P, cur->M);
+    stat_add(CK_LINE, e, !(e <= SC_LIM_LINE), k);
+    if (n != NULL) {
+        double cr[3], a;
+        cr[0] = n[1] * nref[2] - n[2] * nref[1];
+        cr[1] = n[2] * nref[0] - n[0] * nref[2];
+        cr[2] = n[0] * nref[1] - n[1] * nref[0];
+        a = atan2(sqrt(dot3(cr, cr)), dot3(n, nref)) / SC_DEG;
+        stat_add(CK_NORMAL, a, !(a <= SC_LIM_NORMAL), k);
+    }
+    if (cur->on_line >= 0) {
+        line_tangent(cur->t, cur->u, cur->Md, cur->ec);
+    }
+}
+
+/* The geometry of point k: locate, chord of (k - 1, k), angle, checks, and the ortho of
+ * point k - 1 now that its right neighbour is known. */
+static void point_geometry(uint32_t k, double x, double y, double z, const double *n)
+{
+    struct pt cur;
+    struct seg sg;
+    int have_prev;
     memset(&cur, 0, sizeof cur);
     memset(&sg, 0, sizeof sg);
     cur.valid = 1;
@@ -922,7 +981,7 @@ void judge_canal_point(uint32_t k, double x, double y, double z, const double *n
         cov.unchecked++;
         cov_err("reference integration failed", k);
         run.geom = 0;
-        goto out;
+        return;
     }
     /* chord of the segment (k - 1, k): before the point, which moves the line state on */
     if (have_prev && sg.kind != SEG_NONE) {
@@ -931,64 +990,16 @@ void judge_canal_point(uint32_t k, double x, double y, double z, const double *n
             cov.unchecked++;
             cov_err("reference integration failed", k);
             run.geom = 0;
-            goto out;
+            return;
         }
         stat_add(CK_CHORD, c, run.tol > 0.0 && c > run.tol, k);
     }
     cur.in_line = sg.kind == SEG_LINE ? sg.line : -1;
-    /* the angle of points whose u depends on integrated lines */
-    if (run.mode == 0 && cur.on_line >= 0) {
-        if (line_u((unsigned)cur.on_line, cur.t, &cur.u)) {
-            run.geom = 0;
-            goto out;
-        }
-    } else if (run.mode == 1) {
-        uint32_t block = run.steps + 1u + run.link, r = k % block;
-        if (r <= run.steps && sg.kind == SEG_LINE) { /* circle start after a PATCH link */
-            unsigned i = (k / block) & 1u ? run.steps - r : r;
-            double lo, hi;
-            if (bound_u(0u, cur.t, &lo) || bound_u(1u, cur.t, &hi)) {
-                run.geom = 0;
-                goto out;
-            }
-            cur.u = lo + route(hi - lo) * (double)i / (double)run.steps;
-            cur.on_line = (i == 0u) ? 0 : (i == run.steps ? 1 : -1);
-        } else if (r > run.steps && job.patch) {
-            if (line_u((unsigned)cur.on_line, cur.t, &cur.u)) {
-                run.geom = 0;
-                goto out;
-            }
-        }
+    if (point_angle(k, &cur, &sg)) {
+        run.geom = 0;
+        return;
     }
-    {
-        double nref[3], rho[3], c[3], e;
-        struct ref_jet jt;
-        emit(cur.t, cur.u, cur.M, nref);
-        /* surface: the tool centre recovered from the point */
-        ref_jet(&rc, cur.t, &jt);
-        rho[0] = jt.x;
-        rho[1] = jt.y;
-        rho[2] = jt.r;
-        c[0] = x;
-        c[1] = y;
-        c[2] = z + (job.output == OUT_TIP ? job.tool_r : 0.0);
-        e = fabs(dist3(c, rho) - (jt.r - job.tool_r));
-        stat_add(CK_SURF, e, !(e <= SC_LIM_SURF), k);
-        e = dist3(cur.P, cur.M);
-        stat_add(CK_LINE, e, !(e <= SC_LIM_LINE), k);
-        if (n != NULL) {
-            double cr[3], a;
-            cr[0] = n[1] * nref[2] - n[2] * nref[1];
-            cr[1] = n[2] * nref[0] - n[0] * nref[2];
-            cr[2] = n[0] * nref[1] - n[1] * nref[0];
-            a = atan2(sqrt(dot3(cr, cr)), dot3(n, nref)) / SC_DEG;
-            stat_add(CK_NORMAL, a, !(a <= SC_LIM_NORMAL), k);
-        }
-        if (cur.on_line >= 0) {
-            line_tangent(cur.t, cur.u, cur.Md, cur.ec);
-        }
-    }
-    /* ortho of the previous point, now that its right neighbour is known */
+    point_checks(&cur, n);
     if (pv.valid && pv.on_line >= 0) {
         int left = pp.valid && pp.k + 1u == pv.k && pv.in_line == pv.on_line;
         int right = have_prev && cur.in_line == pv.on_line;
@@ -996,7 +1007,16 @@ void judge_canal_point(uint32_t k, double x, double y, double z, const double *n
     }
     pp = pv;
     pv = cur;
-out:
+}
+
+void judge_canal_point(uint32_t k, double x, double y, double z, const double *n)
+{
+    struct timespec t_a, t_b;
+    clock_gettime(CLOCK_MONOTONIC, &t_a);
+    points_seen++;
+    if (point_coverage(k)) {
+        point_geometry(k, x, y, z, n);
+    }
     clock_gettime(CLOCK_MONOTONIC, &t_b);
     judge_seconds += (double)(t_b.tv_sec - t_a.tv_sec) + 1e-9 * (double)(t_b.tv_nsec - t_a.tv_nsec);
 }
