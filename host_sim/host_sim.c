@@ -178,15 +178,36 @@ static int handshake(struct sim_link *l, unsigned timeout_ms, struct hs_result *
     return rc;
 }
 
-/* Options of the RUN receiver and the writers */
-static struct {
+/* The command line (sim_parse_args) */
+struct sim_opts {
+    enum sim_target target;
+    const char *target_name; /* --target as given, or NULL */
+    const char *job_path, *fw, *log_path, *qemu;
+    char **cmd; /* --cmd PROGRAM [ARGS...], or NULL */
+    unsigned timeout_ms;
+    /* the RUN receiver and the writers */
     double baud;
     int fault;
     unsigned long fault_at;
     int resume;
     const char *csv, *gcode, *svg, *raw;
     double min_util; /* percent; < 0: not checked */
-} ro = {0.0, SIM_FAULT_NONE, 0, 0, NULL, NULL, NULL, NULL, -1.0};
+};
+
+static struct sim_opts opt;
+
+/* One session: the job, the firmware behind its pty, the link to it */
+struct sim_session {
+    struct sim_job job;
+    struct sim_pty pty;
+    struct sim_link link;
+    FILE *log;
+    char **cmd;       /* the firmware's argv (cmd[8] is the pty path under QEMU) */
+    char *qargv[20];  /* cmd for native and QEMU */
+    uint64_t t_start; /* us */
+    uint64_t t_hs;    /* us, the first handshake done (0: none) */
+    int interrupted;  /* a wait returned SIM_LINK_INTR */
+};
 
 /* Job state as sent (and answered ok): what the RUN receiver must expect */
 static struct {
@@ -244,7 +265,7 @@ static void job_state(const char *text)
     }
 }
 
-static int parse_fault(const char *v)
+static int parse_fault(struct sim_opts *o, const char *v)
 {
     static const char *const names[] = {"drop", "flip", "dup", "hangup"};
     static const int kinds[] = {SIM_FAULT_DROP, SIM_FAULT_FLIP, SIM_FAULT_DUP, SIM_FAULT_HANGUP};
@@ -256,8 +277,8 @@ static int parse_fault(const char *v)
     }
     for (i = 0; i < 4; i++) {
         if (strlen(names[i]) == (size_t)(at - v) && strncmp(v, names[i], (size_t)(at - v)) == 0) {
-            ro.fault = kinds[i];
-            ro.fault_at = strtoul(at + 1, &e, 10);
+            o->fault = kinds[i];
+            o->fault_at = strtoul(at + 1, &e, 10);
             return *e == '\0' ? 0 : -1;
         }
     }
@@ -265,9 +286,9 @@ static int parse_fault(const char *v)
 }
 
 /* Create the pty, start the firmware and do the handshake (one check). */
-static int fw_start(struct sim_pty *pty, struct sim_link *link, FILE *log, char **cmd,
-                    enum sim_target target, const char *qemu, unsigned timeout_ms, int *interrupted)
+static int fw_start(struct sim_session *s)
 {
+    struct sim_pty *pty = &s->pty;
     static char err[512], what[256];
     struct hs_result hs;
     uint64_t t0 = sim_link_now_us();
@@ -276,24 +297,24 @@ static int fw_start(struct sim_pty *pty, struct sim_link *link, FILE *log, char 
         fprintf(stderr, "host_sim: %s\n", err);
         return -2;
     }
-    if (target == SIM_QEMU) {
-        cmd[8] = pty->path; /* -serial /dev/pts/N */
+    if (opt.target == SIM_QEMU) {
+        s->cmd[8] = pty->path; /* -serial /dev/pts/N */
     }
-    if (sim_pty_spawn(pty, cmd, target != SIM_QEMU, err, sizeof err) != 0) {
+    if (sim_pty_spawn(pty, s->cmd, opt.target != SIM_QEMU, err, sizeof err) != 0) {
         fprintf(stderr, "host_sim: %s%s\n", err,
-                target == SIM_QEMU && strstr(err, qemu) != NULL
+                opt.target == SIM_QEMU && strstr(err, opt.qemu) != NULL
                     ? " (install qemu-system-arm: apt-get install qemu-system-arm)"
                     : "");
         sim_pty_hangup(pty);
         return -2;
     }
-    sim_link_init(link, pty, &sim_stop, log);
-    rc = handshake(link, timeout_ms, &hs);
+    sim_link_init(&s->link, pty, &sim_stop, s->log);
+    rc = handshake(&s->link, opt.timeout_ms, &hs);
     snprintf(what, sizeof what, "handshake ($I x%u, %.2f ms)", hs.sends,
              (double)(sim_link_now_us() - t0) / 1000.0);
     check(hs.ok, what, hs.why);
     if (!hs.ok) {
-        *interrupted = rc == SIM_LINK_INTR;
+        s->interrupted = rc == SIM_LINK_INTR;
         return -1;
     }
     printf("sim: firmware %s\n", hs.ver);
@@ -305,24 +326,24 @@ static int fw_start(struct sim_pty *pty, struct sim_link *link, FILE *log, char 
 }
 
 /* End the firmware after a hang-up (before a restart). */
-static void fw_reap(struct sim_pty *pty, enum sim_target target)
+static void fw_reap(struct sim_pty *pty)
 {
     sim_pty_hangup(pty);
-    if (target == SIM_QEMU || !sim_pty_wait(pty, SIM_SHUTDOWN_MS)) {
+    if (opt.target == SIM_QEMU || !sim_pty_wait(pty, SIM_SHUTDOWN_MS)) {
         (void)sim_pty_stop(pty, SIM_KILL_GRACE_MS);
     }
 }
 
-static void run_opts(struct sim_run_opts *o, unsigned timeout_ms, int first_stream)
+static void run_opts(struct sim_run_opts *o, int first_stream)
 {
     memset(o, 0, sizeof *o);
     o->frames = js.frames;
     o->checksum = js.checksum;
     o->rxbuf = js.rxbuf;
-    o->byte_us = ro.baud > 0.0 ? 1e7 / ro.baud : 0.0;
-    o->fault = first_stream ? ro.fault : SIM_FAULT_NONE;
-    o->fault_at = ro.fault_at;
-    o->timeout_ms = timeout_ms;
+    o->byte_us = opt.baud > 0.0 ? 1e7 / opt.baud : 0.0;
+    o->fault = first_stream ? opt.fault : SIM_FAULT_NONE;
+    o->fault_at = opt.fault_at;
+    o->timeout_ms = opt.timeout_ms;
     o->raw = raw_file;
     o->progress = isatty(2);
 }
@@ -351,7 +372,7 @@ static void run_row(int lineno, const char *cmd, const struct sim_run_result *r)
            r->hung ? " (hang-up injected)" : "", (unsigned long)r->got, (unsigned long)r->first,
            r->bytes_in, r->got ? (double)r->bytes_in / r->got : 0.0, r->got / (us / 1e6), us / 1000.0,
            r->first_byte_us / 1000.0);
-    if (ro.baud > 0.0) {
+    if (opt.baud > 0.0) {
         printf(", wire %.1f%% (%.1f%% from the first byte)", 100.0 * r->util,
                100.0 * r->util_stream);
     }
@@ -424,150 +445,180 @@ static void run_checks(const struct sim_job_cmd *c, const struct sim_run_result 
         snprintf(detail, sizeof detail, "END frame says %lu", e->end_points);
         check(pass, what, js.frames ? detail : "");
     }
-    if (ro.min_util >= 0.0 && r2 == NULL && ro.fault == SIM_FAULT_NONE) {
+    if (opt.min_util >= 0.0 && r2 == NULL && opt.fault == SIM_FAULT_NONE) {
         snprintf(what, sizeof what, "line %d wire utilization %.1f%% >= %.1f%% at %.0f baud",
-                 c->lineno, 100.0 * r->util, ro.min_util, ro.baud);
-        check(100.0 * r->util >= ro.min_util, what, "");
+                 c->lineno, 100.0 * r->util, opt.min_util, opt.baud);
+        check(100.0 * r->util >= opt.min_util, what, "");
     }
 }
 
-int main(int argc, char **argv)
-{
-    static char err[512], detail[512], what[256];
-    enum sim_target target = SIM_NATIVE;
-    const char *job_path = NULL, *fw = NULL, *log_path = NULL, *qemu = "qemu-system-arm";
-    const char *target_name = NULL;
-    char **cmd = NULL;
-    unsigned timeout_ms = 2000;
-    struct sim_job job;
-    struct sim_pty pty;
-    struct sim_link link;
-    struct sigaction sa;
-    FILE *log = NULL;
-    uint64_t t_start, t_hs = 0;
-    size_t i;
-    int rc, fatal = 0, interrupted = 0;
-    char *qargv[20];
-    char st[32];
+/* ---- the command line ------------------------------------------------------------------ */
 
-    setvbuf(stdout, NULL, _IOLBF, 0);
+/* One option a with its value v. NULL, or the usage message. */
+static const char *parse_value(struct sim_opts *o, const char *a, const char *v)
+{
+    char *e;
+    if (strcmp(a, "--target") == 0) {
+        o->target_name = v;
+    } else if (strcmp(a, "--job") == 0) {
+        o->job_path = v;
+    } else if (strcmp(a, "--fw") == 0) {
+        o->fw = v;
+    } else if (strcmp(a, "--log") == 0) {
+        o->log_path = v;
+    } else if (strcmp(a, "--qemu") == 0) {
+        o->qemu = v;
+    } else if (strcmp(a, "--csv") == 0) {
+        o->csv = v;
+    } else if (strcmp(a, "--gcode") == 0) {
+        o->gcode = v;
+    } else if (strcmp(a, "--svg") == 0) {
+        o->svg = v;
+    } else if (strcmp(a, "--raw") == 0) {
+        o->raw = v;
+    } else if (strcmp(a, "--baud") == 0) {
+        o->baud = strtod(v, &e);
+        if (*e != '\0' || o->baud < 300.0 || o->baud > 1e8) {
+            return "--baud must be 300..100000000";
+        }
+    } else if (strcmp(a, "--min-util") == 0) {
+        o->min_util = strtod(v, &e);
+        if (*e != '\0' || o->min_util < 0.0 || o->min_util > 100.0) {
+            return "--min-util must be 0..100 (percent)";
+        }
+    } else if (strcmp(a, "--fault") == 0) {
+        if (parse_fault(o, v) != 0) {
+            return "--fault must be drop|flip|dup|hangup@N";
+        }
+    } else if (strcmp(a, "--timeout-ms") == 0) {
+        unsigned long ms = strtoul(v, &e, 10);
+        if (*e != '\0' || ms < 50 || ms > 600000) {
+            return "--timeout-ms must be 50..600000";
+        }
+        o->timeout_ms = (unsigned)ms;
+    } else {
+        return "unknown option";
+    }
+    return NULL;
+}
+
+/* Fill o from the command line. NULL, or the usage message of the first error. */
+static const char *sim_parse_args(int argc, char **argv, struct sim_opts *o)
+{
+    const char *msg;
+    size_t i;
+    memset(o, 0, sizeof *o);
+    o->target = SIM_NATIVE;
+    o->qemu = "qemu-system-arm";
+    o->timeout_ms = 2000;
+    o->fault = SIM_FAULT_NONE;
+    o->min_util = -1.0;
     for (i = 1; i < (size_t)argc; i += 2) { /* every option but --resume takes one value */
         const char *a = argv[i];
         const char *v = i + 1 < (size_t)argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--cmd") == 0) {
             if (v == NULL) {
-                return usage("--cmd needs a program");
+                return "--cmd needs a program";
             }
-            cmd = argv + i + 1;
-            target = SIM_CMD;
+            o->cmd = argv + i + 1;
+            o->target = SIM_CMD;
             break;
         }
         if (strcmp(a, "--resume") == 0) {
-            ro.resume = 1;
+            o->resume = 1;
             i--;
             continue;
         }
         if (v == NULL) {
-            return usage("missing value after an option");
+            return "missing value after an option";
         }
-        if (strcmp(a, "--target") == 0) {
-            target_name = v;
-        } else if (strcmp(a, "--job") == 0) {
-            job_path = v;
-        } else if (strcmp(a, "--fw") == 0) {
-            fw = v;
-        } else if (strcmp(a, "--log") == 0) {
-            log_path = v;
-        } else if (strcmp(a, "--qemu") == 0) {
-            qemu = v;
-        } else if (strcmp(a, "--csv") == 0) {
-            ro.csv = v;
-        } else if (strcmp(a, "--gcode") == 0) {
-            ro.gcode = v;
-        } else if (strcmp(a, "--svg") == 0) {
-            ro.svg = v;
-        } else if (strcmp(a, "--raw") == 0) {
-            ro.raw = v;
-        } else if (strcmp(a, "--baud") == 0) {
-            char *e;
-            ro.baud = strtod(v, &e);
-            if (*e != '\0' || ro.baud < 300.0 || ro.baud > 1e8) {
-                return usage("--baud must be 300..100000000");
-            }
-        } else if (strcmp(a, "--min-util") == 0) {
-            char *e;
-            ro.min_util = strtod(v, &e);
-            if (*e != '\0' || ro.min_util < 0.0 || ro.min_util > 100.0) {
-                return usage("--min-util must be 0..100 (percent)");
-            }
-        } else if (strcmp(a, "--fault") == 0) {
-            if (parse_fault(v) != 0) {
-                return usage("--fault must be drop|flip|dup|hangup@N");
-            }
-        } else if (strcmp(a, "--timeout-ms") == 0) {
-            char *e;
-            unsigned long t = strtoul(v, &e, 10);
-            if (*e != '\0' || t < 50 || t > 600000) {
-                return usage("--timeout-ms must be 50..600000");
-            }
-            timeout_ms = (unsigned)t;
+        if ((msg = parse_value(o, a, v)) != NULL) {
+            return msg;
+        }
+    }
+    if (o->target != SIM_CMD) {
+        if (o->target_name == NULL || strcmp(o->target_name, "native") == 0) {
+            o->target = SIM_NATIVE;
+        } else if (strcmp(o->target_name, "qemu") == 0) {
+            o->target = SIM_QEMU;
         } else {
-            return usage("unknown option");
+            return "--target must be native or qemu";
         }
+    } else if (o->target_name != NULL && strcmp(o->target_name, "native") != 0) {
+        return "--cmd runs the program like --target native";
     }
-    if (target != SIM_CMD) {
-        if (target_name == NULL || strcmp(target_name, "native") == 0) {
-            target = SIM_NATIVE;
-        } else if (strcmp(target_name, "qemu") == 0) {
-            target = SIM_QEMU;
-        } else {
-            return usage("--target must be native or qemu");
-        }
-    } else if (target_name != NULL && strcmp(target_name, "native") != 0) {
-        return usage("--cmd runs the program like --target native");
+    if (o->job_path == NULL) {
+        return "--job FILE is required";
     }
-    if (job_path == NULL) {
-        return usage("--job FILE is required");
+    if (o->min_util >= 0.0 && o->baud <= 0.0) {
+        return "--min-util needs --baud";
     }
-    if (ro.min_util >= 0.0 && ro.baud <= 0.0) {
-        return usage("--min-util needs --baud");
+    if (o->fw == NULL) {
+        o->fw = o->target == SIM_QEMU ? SIM_DEFAULT_QEMU_FW : SIM_DEFAULT_NATIVE;
     }
-    if (fw == NULL) {
-        fw = target == SIM_QEMU ? SIM_DEFAULT_QEMU_FW : SIM_DEFAULT_NATIVE;
-    }
-    if (sim_job_load(&job, job_path, err, sizeof err) != 0) {
+    return NULL;
+}
+
+/* ---- set-up ---------------------------------------------------------------------------- */
+
+/* Load the job and open the outputs. 0; -1 if the job did not load (nothing to close);
+ * -2 on any other set-up error (sim_setup_fail closes what is open). Reported on stderr. */
+static int sim_setup(struct sim_session *s)
+{
+    static char err[512];
+    if (sim_job_load(&s->job, opt.job_path, err, sizeof err) != 0) {
         fprintf(stderr, "host_sim: %s\n", err);
-        checks.failed++;
-        finish_line();
-        return 2;
+        return -1;
     }
-    if (target != SIM_CMD && access(fw, R_OK) != 0) {
-        fprintf(stderr, "host_sim: firmware %s: %s%s\n", fw, strerror(errno),
-                target == SIM_QEMU ? " (build it with make m4f-fw)" : " (make fw-native)");
-        goto setup_fail;
+    if (opt.target != SIM_CMD && access(opt.fw, R_OK) != 0) {
+        fprintf(stderr, "host_sim: firmware %s: %s%s\n", opt.fw, strerror(errno),
+                opt.target == SIM_QEMU ? " (build it with make m4f-fw)" : " (make fw-native)");
+        return -2;
     }
-    rtts = calloc(job.n + 1u, sizeof *rtts);
+    rtts = calloc(s->job.n + 1u, sizeof *rtts);
     if (rtts == NULL) {
         fprintf(stderr, "host_sim: out of memory\n");
-        goto setup_fail;
+        return -2;
     }
-    if (log_path != NULL) {
-        log = fopen(log_path, "w");
-        if (log == NULL) {
-            fprintf(stderr, "host_sim: %s: %s\n", log_path, strerror(errno));
-            goto setup_fail;
+    if (opt.log_path != NULL) {
+        s->log = fopen(opt.log_path, "w");
+        if (s->log == NULL) {
+            fprintf(stderr, "host_sim: %s: %s\n", opt.log_path, strerror(errno));
+            return -2;
         }
-        setvbuf(log, NULL, _IOLBF, 0);
+        setvbuf(s->log, NULL, _IOLBF, 0);
     }
-    if (ro.raw != NULL && (raw_file = fopen(ro.raw, "wb")) == NULL) {
-        fprintf(stderr, "host_sim: %s: %s\n", ro.raw, strerror(errno));
-        goto setup_fail;
+    if (opt.raw != NULL && (raw_file = fopen(opt.raw, "wb")) == NULL) {
+        fprintf(stderr, "host_sim: %s: %s\n", opt.raw, strerror(errno));
+        return -2;
     }
-    if (sim_out_open(ro.csv, ro.gcode, ro.svg) != 0) {
-        goto setup_fail;
+    if (sim_out_open(opt.csv, opt.gcode, opt.svg) != 0) {
+        return -2;
     }
     sim_check_init();
+    return 0;
+}
 
+/* A set-up error: nothing was spawned, or the child is already gone. Exit status 2. */
+static int sim_setup_fail(struct sim_session *s)
+{
+    if (s->log != NULL) {
+        fclose(s->log);
+    }
+    if (raw_file != NULL) {
+        fclose(raw_file);
+    }
+    (void)sim_out_close();
+    sim_job_free(&s->job);
+    free(rtts);
+    checks.failed++;
+    finish_line();
+    return 2;
+}
+
+static void sim_signals(void)
+{
+    struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = sim_on_signal;
     sigemptyset(&sa.sa_mask);
@@ -576,314 +627,400 @@ int main(int argc, char **argv)
     (void)sigaction(SIGHUP, &sa, NULL);
     sa.sa_handler = SIG_IGN;
     (void)sigaction(SIGPIPE, &sa, NULL);
+}
 
-    t_start = sim_link_now_us();
-    if (target == SIM_QEMU) {
-        size_t k = 0;
-        qargv[k++] = (char *)qemu;
-        qargv[k++] = "-M";
-        qargv[k++] = "mps2-an386";
-        qargv[k++] = "-display";
-        qargv[k++] = "none";
-        qargv[k++] = "-monitor";
-        qargv[k++] = "none";
-        qargv[k++] = "-serial";
-        qargv[k++] = "/dev/null"; /* [8]: the pty path, set by fw_start */
-        qargv[k++] = "-semihosting-config";
-        qargv[k++] = "enable=on,target=native";
-        qargv[k++] = "-icount";
-        qargv[k++] = "shift=7";
-        qargv[k++] = "-kernel";
-        qargv[k++] = (char *)fw;
-        qargv[k] = NULL;
-        cmd = qargv;
-    } else if (target == SIM_NATIVE) {
-        qargv[0] = (char *)fw;
-        qargv[1] = NULL;
-        cmd = qargv;
+/* The firmware's argv: QEMU's command line, the native firmware, or --cmd's. */
+static void sim_command(struct sim_session *s)
+{
+    char **q = s->qargv;
+    size_t k = 0;
+    s->cmd = opt.cmd;
+    if (opt.target == SIM_QEMU) {
+        q[k++] = (char *)opt.qemu;
+        q[k++] = "-M";
+        q[k++] = "mps2-an386";
+        q[k++] = "-display";
+        q[k++] = "none";
+        q[k++] = "-monitor";
+        q[k++] = "none";
+        q[k++] = "-serial";
+        q[k++] = "/dev/null"; /* [8]: the pty path, set by fw_start */
+        q[k++] = "-semihosting-config";
+        q[k++] = "enable=on,target=native";
+        q[k++] = "-icount";
+        q[k++] = "shift=7";
+        q[k++] = "-kernel";
+        q[k++] = (char *)opt.fw;
+        q[k] = NULL;
+        s->cmd = q;
+    } else if (opt.target == SIM_NATIVE) {
+        q[0] = (char *)opt.fw;
+        q[1] = NULL;
+        s->cmd = q;
     }
-    printf("sim: target %s, %s, job %s (%lu commands), timeout %u ms%s\n",
-           target == SIM_QEMU ? "qemu" : target == SIM_NATIVE ? "native" : "cmd",
-           target == SIM_QEMU ? fw : cmd[0], job_path, (unsigned long)job.n, timeout_ms,
-           ro.baud > 0.0 ? ", paced" : "");
-    if (ro.baud > 0.0) {
-        printf("sim: UART pacing %.0f baud 8N1 (%.2f us/byte) both directions\n", ro.baud,
-               1e7 / ro.baud);
-    }
-    /* 1. firmware and handshake */
-    rc = fw_start(&pty, &link, log, cmd, target, qemu, timeout_ms, &interrupted);
+}
+
+/* ---- the session ----------------------------------------------------------------------- */
+
+static double byte_us(void)
+{
+    return opt.baud > 0.0 ? 1e7 / opt.baud : 0.0;
+}
+
+/* After a hang-up in the first stream of job line i: a new firmware, the job's lines before
+ * it again, then RESUME k with k = the first point not received intact. 1: resumed (r2
+ * holds the resumed stream), 0: not resumed, -1: the session cannot go on. */
+static int run_resume(struct sim_session *s, size_t i, const struct sim_run_result *r1,
+                      uint32_t start_k, struct sim_run_result *r2)
+{
+    static char out[SIM_JOB_LINE_MAX + 2], what[256], esc[31];
+    const struct sim_job_cmd *c = &s->job.cmd[i];
+    struct sim_run_opts o;
+    struct sim_reply r;
+    size_t j;
+    uint32_t k = r1->header ? r1->first + r1->got : start_k;
+    char rs[40];
+    int rc;
+    printf("  resume: link hung up at byte %lu after %lu points; restarting the "
+           "firmware, RESUME %lu\n",
+           opt.fault_at, (unsigned long)r1->got, (unsigned long)k);
+    fw_reap(&s->pty);
+    rc = fw_start(s);
     if (rc == -2) {
-        goto setup_fail;
+        check(0, "restart after the hang-up", "");
+        return -1;
     }
-    t_hs = sim_link_now_us();
-    fatal = rc != 0;
-
-    /* 2. the job */
-    if (!fatal) {
-        printf("  %4s  %-30s %-26s %-10s %9s  %s\n", "line", "command", "reply", "expect",
-               "rtt ms", "check");
-    }
-    for (i = 0; !fatal && i < job.n; i++) {
-        const struct sim_job_cmd *c = &job.cmd[i];
-        static char out[SIM_JOB_LINE_MAX + 2], reply[64], expect[24], esc[31];
-        struct sim_reply r;
-        uint64_t t0;
-        double ms, byte_us = ro.baud > 0.0 ? 1e7 / ro.baud : 0.0;
-        int pass = 1, is_run = kw_is(c->text, "RUN") || kw_is(c->text, "RESUME");
-        if (!is_run && !kw_is(c->text, "$I")) {
-            (void)sim_check_job_line(c->text);
-        }
-        memcpy(out, c->text, c->len);
-        out[c->len] = '\n';
-        sim_link_escape(c->text, c->len, esc, sizeof esc);
-        t0 = sim_link_now_us();
-        rc = sim_run_send(&link, out, c->len + 1u, byte_us, sim_link_now_ms() + timeout_ms);
-        if (rc == SIM_LINK_REPLY) {
-            stats.sent++;
-        }
-        if (rc == SIM_LINK_REPLY && is_run) {
-            static struct sim_run_result r1, r2;
-            struct sim_run_opts o;
-            int resumed = 0;
-            uint32_t start_k = kw_is(c->text, "RESUME") ? (uint32_t)strtoul(arg1(c->text), NULL, 10) : 0u;
-            run_opts(&o, timeout_ms, 1);
-            rc = sim_run_stream(&link, &o, &r1);
-            run_account(&r1, byte_us);
-            run_row(c->lineno, esc, &r1);
-            if (r1.hung) {
-                rt.hangups++;
-            }
-            if (r1.hung && ro.resume && !sim_stop) {
-                /* restart the firmware, send the job again, RESUME at the points we have */
-                size_t j;
-                uint32_t k = r1.header ? r1.first + r1.got : start_k;
-                char rs[40];
-                printf("  resume: link hung up at byte %lu after %lu points; restarting the "
-                       "firmware, RESUME %lu\n", ro.fault_at, (unsigned long)r1.got,
-                       (unsigned long)k);
-                fw_reap(&pty, target);
-                rc = fw_start(&pty, &link, log, cmd, target, qemu, timeout_ms, &interrupted);
-                if (rc == -2) {
-                    check(0, "restart after the hang-up", "");
-                    fatal = 1;
-                    break;
-                }
-                for (j = 0; rc == 0 && j < i; j++) {
-                    const struct sim_job_cmd *cj = &job.cmd[j];
-                    if (kw_is(cj->text, "RUN") || kw_is(cj->text, "RESUME")) {
-                        continue;
-                    }
-                    memcpy(out, cj->text, cj->len);
-                    out[cj->len] = '\n';
-                    rc = sim_run_send(&link, out, cj->len + 1u, byte_us, sim_link_now_ms() + timeout_ms);
-                    if (rc == SIM_LINK_REPLY) {
-                        rc = sim_link_await(&link, sim_link_now_ms() + timeout_ms, &r, NULL, NULL);
-                    }
-                }
-                if (rc != 0) {
-                    check(0, "job sent again after the restart", sim_link_strerror(rc));
-                    fatal = 1;
-                    interrupted = rc == SIM_LINK_INTR;
-                    break;
-                }
-                snprintf(rs, sizeof rs, "RESUME %lu\n", (unsigned long)k);
-                rc = sim_run_send(&link, rs, strlen(rs), byte_us, sim_link_now_ms() + timeout_ms);
-                if (rc == SIM_LINK_REPLY) {
-                    run_opts(&o, timeout_ms, 0);
-                    rc = sim_run_stream(&link, &o, &r2);
-                    run_account(&r2, byte_us);
-                    sim_link_escape(rs, strlen(rs) - 1u, esc, sizeof esc);
-                    run_row(c->lineno, esc, &r2);
-                    rt.resumes++;
-                    resumed = 1;
-                    snprintf(what, sizeof what, "line %d resumed at point %lu", c->lineno,
-                             (unsigned long)k);
-                    check(r2.header && r2.first == k, what, r2.header ? "header first differs" : "no header");
-                }
-            }
-            if (r1.hung && !resumed) {
-                snprintf(what, sizeof what, "line %d RUN: link hung up at byte %lu", c->lineno,
-                         ro.fault_at);
-                check(0, what, ro.resume ? "resume failed" : "no --resume");
-                fatal = 1;
-                break;
-            }
-            run_checks(c, &r1, resumed ? &r2 : NULL, start_k);
-            {
-                const struct sim_run_result *e = resumed ? &r2 : &r1;
-                if (e->rc == SIM_LINK_REPLY) {
-                    stats.ok += !e->error;
-                    stats.error += e->error;
-                    rtts[stats.ok + stats.error - 1u] = (double)(sim_link_now_us() - t0) / 1000.0;
-                } else {
-                    fatal = 1;
-                    interrupted = e->rc == SIM_LINK_INTR;
-                }
-            }
+    for (j = 0; rc == 0 && j < i; j++) {
+        const struct sim_job_cmd *cj = &s->job.cmd[j];
+        if (kw_is(cj->text, "RUN") || kw_is(cj->text, "RESUME")) {
             continue;
         }
+        memcpy(out, cj->text, cj->len);
+        out[cj->len] = '\n';
+        rc = sim_run_send(&s->link, out, cj->len + 1u, byte_us(),
+                          sim_link_now_ms() + opt.timeout_ms);
         if (rc == SIM_LINK_REPLY) {
-            rc = sim_link_await(&link, sim_link_now_ms() + timeout_ms, &r, NULL, NULL);
-        }
-        ms = (double)(sim_link_now_us() - t0) / 1000.0;
-        if (rc != SIM_LINK_REPLY) {
-            snprintf(detail, sizeof detail, "%s after %.1f ms", sim_link_strerror(rc), ms);
-            snprintf(what, sizeof what, "line %d \"%s\"", c->lineno, esc);
-            check(0, what, detail);
-            fatal = 1;
-            interrupted = rc == SIM_LINK_INTR;
-            break;
-        }
-        rtts[stats.ok + stats.error] = ms;
-        if (r.error) {
-            stats.error++;
-            snprintf(reply, sizeof reply, "error:%d", r.code);
-        } else {
-            stats.ok++;
-            snprintf(reply, sizeof reply, "ok");
-            job_state(c->text);
-        }
-        if (r.info) {
-            size_t L = strlen(reply);
-            snprintf(reply + L, sizeof reply - L, " +%u info", r.info);
-        }
-        stats.info += r.info;
-        stats.unknown += r.unknown;
-        stats.streamed += r.streamed;
-        if (c->expect == SIM_JOB_EXPECT_OK) {
-            snprintf(expect, sizeof expect, "ok");
-            pass = !r.error;
-        } else if (c->expect == SIM_JOB_EXPECT_ERROR) {
-            snprintf(expect, sizeof expect, "error:%d", c->code);
-            pass = r.error && r.code == c->code;
-        } else {
-            snprintf(expect, sizeof expect, "-");
-        }
-        printf("  %4d  %-30s %-26s %-10s %9.3f  %s\n", c->lineno, esc, reply, expect, ms,
-               c->expect == SIM_JOB_EXPECT_NONE ? "-" : pass ? "pass" : "FAIL");
-        if (c->expect != SIM_JOB_EXPECT_NONE && pass) {
-            checks.passed++;
-        } else if (c->expect != SIM_JOB_EXPECT_NONE) {
-            checks.failed++;
-        }
-        if (r.unknown) {
-            snprintf(what, sizeof what, "line %d: %u unknown reply line(s), first \"%s\"",
-                     c->lineno, r.unknown, r.first_unknown);
-            check(0, what, "");
-        }
-        if (r.error && !r.text_ok) {
-            snprintf(what, sizeof what, "line %d: error:%d text does not match cp_status.def",
-                     c->lineno, r.code);
-            check(0, what, "");
+            rc = sim_link_await(&s->link, sim_link_now_ms() + opt.timeout_ms, &r, NULL, NULL);
         }
     }
+    if (rc != 0) {
+        check(0, "job sent again after the restart", sim_link_strerror(rc));
+        s->interrupted = rc == SIM_LINK_INTR;
+        return -1;
+    }
+    snprintf(rs, sizeof rs, "RESUME %lu\n", (unsigned long)k);
+    rc = sim_run_send(&s->link, rs, strlen(rs), byte_us(), sim_link_now_ms() + opt.timeout_ms);
+    if (rc != SIM_LINK_REPLY) {
+        return 0;
+    }
+    run_opts(&o, 0);
+    rc = sim_run_stream(&s->link, &o, r2);
+    run_account(r2, byte_us());
+    sim_link_escape(rs, strlen(rs) - 1u, esc, sizeof esc);
+    run_row(c->lineno, esc, r2);
+    rt.resumes++;
+    snprintf(what, sizeof what, "line %d resumed at point %lu", c->lineno, (unsigned long)k);
+    check(r2->header && r2->first == k, what, r2->header ? "header first differs" : "no header");
+    return 1;
+}
 
-    /* 3. shutdown: every path ends here, the child is always reaped */
-    if (interrupted || sim_stop) {
-        (void)sim_pty_stop(&pty, SIM_KILL_GRACE_MS);
-        sim_pty_hangup(&pty);
+/* Job line i, a RUN or RESUME that was sent at t0 (us): its stream, a resume after a
+ * hang-up (--resume), its checks. 0, or 1 when the session cannot go on. */
+static int job_run(struct sim_session *s, size_t i, uint64_t t0, const char *esc)
+{
+    static struct sim_run_result r1, r2;
+    static char what[256];
+    const struct sim_job_cmd *c = &s->job.cmd[i];
+    const struct sim_run_result *e;
+    struct sim_run_opts o;
+    int resumed = 0;
+    uint32_t start_k =
+        kw_is(c->text, "RESUME") ? (uint32_t)strtoul(arg1(c->text), NULL, 10) : 0u;
+    run_opts(&o, 1);
+    (void)sim_run_stream(&s->link, &o, &r1);
+    run_account(&r1, byte_us());
+    run_row(c->lineno, esc, &r1);
+    if (r1.hung) {
+        rt.hangups++;
+    }
+    if (r1.hung && opt.resume && !sim_stop) {
+        resumed = run_resume(s, i, &r1, start_k, &r2);
+        if (resumed < 0) {
+            return 1;
+        }
+    }
+    if (r1.hung && !resumed) {
+        snprintf(what, sizeof what, "line %d RUN: link hung up at byte %lu", c->lineno,
+                 opt.fault_at);
+        check(0, what, opt.resume ? "resume failed" : "no --resume");
+        return 1;
+    }
+    run_checks(c, &r1, resumed ? &r2 : NULL, start_k);
+    e = resumed ? &r2 : &r1;
+    if (e->rc != SIM_LINK_REPLY) {
+        s->interrupted = e->rc == SIM_LINK_INTR;
+        return 1;
+    }
+    stats.ok += !e->error;
+    stats.error += e->error;
+    rtts[stats.ok + stats.error - 1u] = (double)(sim_link_now_us() - t0) / 1000.0;
+    return 0;
+}
+
+/* The table row and the checks of job line c, answered r after ms. */
+static void reply_row(const struct sim_job_cmd *c, const struct sim_reply *r, double ms,
+                      const char *esc)
+{
+    static char reply[64], expect[24], what[256];
+    int pass = 1;
+    rtts[stats.ok + stats.error] = ms;
+    if (r->error) {
+        stats.error++;
+        snprintf(reply, sizeof reply, "error:%d", r->code);
+    } else {
+        stats.ok++;
+        snprintf(reply, sizeof reply, "ok");
+        job_state(c->text);
+    }
+    if (r->info) {
+        size_t L = strlen(reply);
+        snprintf(reply + L, sizeof reply - L, " +%u info", r->info);
+    }
+    stats.info += r->info;
+    stats.unknown += r->unknown;
+    stats.streamed += r->streamed;
+    if (c->expect == SIM_JOB_EXPECT_OK) {
+        snprintf(expect, sizeof expect, "ok");
+        pass = !r->error;
+    } else if (c->expect == SIM_JOB_EXPECT_ERROR) {
+        snprintf(expect, sizeof expect, "error:%d", c->code);
+        pass = r->error && r->code == c->code;
+    } else {
+        snprintf(expect, sizeof expect, "-");
+    }
+    printf("  %4d  %-30s %-26s %-10s %9.3f  %s\n", c->lineno, esc, reply, expect, ms,
+           c->expect == SIM_JOB_EXPECT_NONE ? "-" : pass ? "pass" : "FAIL");
+    if (c->expect != SIM_JOB_EXPECT_NONE && pass) {
+        checks.passed++;
+    } else if (c->expect != SIM_JOB_EXPECT_NONE) {
+        checks.failed++;
+    }
+    if (r->unknown) {
+        snprintf(what, sizeof what, "line %d: %u unknown reply line(s), first \"%s\"", c->lineno,
+                 r->unknown, r->first_unknown);
+        check(0, what, "");
+    }
+    if (r->error && !r->text_ok) {
+        snprintf(what, sizeof what, "line %d: error:%d text does not match cp_status.def",
+                 c->lineno, r->code);
+        check(0, what, "");
+    }
+}
+
+/* Job line i: sent, answered (or streamed), checked. 0, or 1 when the session cannot go on. */
+static int job_command(struct sim_session *s, size_t i)
+{
+    static char out[SIM_JOB_LINE_MAX + 2], esc[31], detail[512], what[256];
+    const struct sim_job_cmd *c = &s->job.cmd[i];
+    struct sim_reply r;
+    uint64_t t0;
+    double ms;
+    int rc, is_run = kw_is(c->text, "RUN") || kw_is(c->text, "RESUME");
+    if (!is_run && !kw_is(c->text, "$I")) {
+        (void)sim_check_job_line(c->text);
+    }
+    memcpy(out, c->text, c->len);
+    out[c->len] = '\n';
+    sim_link_escape(c->text, c->len, esc, sizeof esc);
+    t0 = sim_link_now_us();
+    rc = sim_run_send(&s->link, out, c->len + 1u, byte_us(), sim_link_now_ms() + opt.timeout_ms);
+    if (rc == SIM_LINK_REPLY) {
+        stats.sent++;
+    }
+    if (rc == SIM_LINK_REPLY && is_run) {
+        return job_run(s, i, t0, esc);
+    }
+    if (rc == SIM_LINK_REPLY) {
+        rc = sim_link_await(&s->link, sim_link_now_ms() + opt.timeout_ms, &r, NULL, NULL);
+    }
+    ms = (double)(sim_link_now_us() - t0) / 1000.0;
+    if (rc != SIM_LINK_REPLY) {
+        snprintf(detail, sizeof detail, "%s after %.1f ms", sim_link_strerror(rc), ms);
+        snprintf(what, sizeof what, "line %d \"%s\"", c->lineno, esc);
+        check(0, what, detail);
+        s->interrupted = rc == SIM_LINK_INTR;
+        return 1;
+    }
+    reply_row(c, &r, ms, esc);
+    return 0;
+}
+
+/* The firmware, the handshake and the job. 0, or -2 on a set-up error (nothing spawned). */
+static int sim_session(struct sim_session *s)
+{
+    size_t i;
+    int rc;
+    printf("sim: target %s, %s, job %s (%lu commands), timeout %u ms%s\n",
+           opt.target == SIM_QEMU ? "qemu" : opt.target == SIM_NATIVE ? "native" : "cmd",
+           opt.target == SIM_QEMU ? opt.fw : s->cmd[0], opt.job_path, (unsigned long)s->job.n,
+           opt.timeout_ms, opt.baud > 0.0 ? ", paced" : "");
+    if (opt.baud > 0.0) {
+        printf("sim: UART pacing %.0f baud 8N1 (%.2f us/byte) both directions\n", opt.baud,
+               1e7 / opt.baud);
+    }
+    /* 1. firmware and handshake */
+    rc = fw_start(s);
+    if (rc == -2) {
+        return -2;
+    }
+    s->t_hs = sim_link_now_us();
+    if (rc != 0) {
+        return 0;
+    }
+    /* 2. the job */
+    printf("  %4s  %-30s %-26s %-10s %9s  %s\n", "line", "command", "reply", "expect", "rtt ms",
+           "check");
+    for (i = 0; i < s->job.n; i++) {
+        if (job_command(s, i) != 0) {
+            break;
+        }
+    }
+    return 0;
+}
+
+/* 3. shutdown: every path ends here, the child is always reaped */
+static void sim_shutdown(struct sim_session *s)
+{
+    static char detail[512];
+    char st[32];
+    struct sim_pty *pty = &s->pty;
+    if (s->interrupted || sim_stop) {
+        (void)sim_pty_stop(pty, SIM_KILL_GRACE_MS);
+        sim_pty_hangup(pty);
         check(0, "interrupted", "firmware stopped and reaped");
-    } else if (target == SIM_QEMU) {
-        int alive = !sim_pty_exited(&pty), how;
-        how = sim_pty_stop(&pty, SIM_KILL_GRACE_MS); /* QEMU never exits on a hang-up */
-        sim_pty_hangup(&pty);
+    } else if (opt.target == SIM_QEMU) {
+        int alive = !sim_pty_exited(pty), how;
+        how = sim_pty_stop(pty, SIM_KILL_GRACE_MS); /* QEMU never exits on a hang-up */
+        sim_pty_hangup(pty);
         if (!alive) {
             snprintf(detail, sizeof detail, "QEMU exited during the session (%s)",
-                     sim_pty_describe(pty.status, st, sizeof st));
+                     sim_pty_describe(pty->status, st, sizeof st));
         } else {
             snprintf(detail, sizeof detail, "QEMU needed SIGKILL");
         }
         check(alive && how == 1, "clean shutdown (QEMU alive, ends on SIGTERM)", detail);
     } else {
-        int early = sim_pty_exited(&pty), exited, how = 0;
-        sim_pty_hangup(&pty);
-        exited = early || sim_pty_wait(&pty, SIM_SHUTDOWN_MS);
+        int early = sim_pty_exited(pty), exited, how = 0;
+        sim_pty_hangup(pty);
+        exited = early || sim_pty_wait(pty, SIM_SHUTDOWN_MS);
         if (!exited) {
-            how = sim_pty_stop(&pty, SIM_KILL_GRACE_MS);
+            how = sim_pty_stop(pty, SIM_KILL_GRACE_MS);
         }
         if (early) {
             snprintf(detail, sizeof detail, "firmware exited before the hang-up (%s)",
-                     sim_pty_describe(pty.status, st, sizeof st));
+                     sim_pty_describe(pty->status, st, sizeof st));
         } else if (!exited) {
-            snprintf(detail, sizeof detail, "no exit within %d ms of the hang-up; %s", SIM_SHUTDOWN_MS,
-                     how == 2 ? "needed SIGKILL" : "ended by SIGTERM");
+            snprintf(detail, sizeof detail, "no exit within %d ms of the hang-up; %s",
+                     SIM_SHUTDOWN_MS, how == 2 ? "needed SIGKILL" : "ended by SIGTERM");
         } else {
-            snprintf(detail, sizeof detail, "%s", sim_pty_describe(pty.status, st, sizeof st));
+            snprintf(detail, sizeof detail, "%s", sim_pty_describe(pty->status, st, sizeof st));
         }
-        check(!early && exited && WIFEXITED(pty.status) && WEXITSTATUS(pty.status) == 0,
+        check(!early && exited && WIFEXITED(pty->status) && WEXITSTATUS(pty->status) == 0,
               "clean shutdown (exit 0 on hang-up)", detail);
     }
+}
 
-    /* 4. summary */
-    {
-        unsigned long n = stats.ok + stats.error;
-        double med = 0.0;
-        unsigned long written = sim_out_close();
-        if (n > 0) {
-            qsort(rtts, n, sizeof *rtts, cmp_double);
-            med = n % 2u ? rtts[n / 2u] : (rtts[n / 2u - 1u] + rtts[n / 2u]) / 2.0;
-        }
-        printf("sim: summary\n");
-        printf("  %-18s %lu of %lu\n", "commands sent", stats.sent, (unsigned long)job.n);
-        printf("  %-18s ok %lu, error %lu, info lines %lu, unknown %lu\n", "replies", stats.ok,
-               stats.error, stats.info, stats.unknown);
-        printf("  %-18s out %llu, in %llu\n", "bytes", link.bytes_out, link.bytes_in);
-        if (n > 0) {
-            printf("  %-18s min %.3f, median %.3f, max %.3f\n", "round trip ms", rtts[0], med,
-                   rtts[n - 1u]);
-        }
-        if (rt.runs > 0) {
-            printf("  %-18s %lu (%s%s), hang-ups %lu, resumes %lu\n", "runs", rt.runs,
-                   js.frames ? "FRAMES" : "GCODE", !js.frames && js.checksum ? "+CHECKSUM" : "",
-                   rt.hangups, rt.resumes);
-            printf("  %-18s %lu\n", "points", rt.points);
-            printf("  %-18s in %llu, out %llu\n", "run bytes", rt.bytes_in, rt.bytes_out);
-            printf("  %-18s %.2f\n", "bytes/point", rt.points ? (double)rt.bytes_in / rt.points : 0.0);
-            printf("  %-18s %.0f\n", "points/s", rt.run_us > 0.0 ? rt.points / (rt.run_us / 1e6) : 0.0);
-            if (ro.baud > 0.0) {
-                printf("  %-18s %.1f%% at %.0f baud\n", "wire utilization",
-                       rt.run_us > 0.0 ? 100.0 * rt.wire_us / rt.run_us : 0.0, ro.baud);
-            } else {
-                printf("  %-18s - (unpaced; use --baud N)\n", "wire utilization");
-            }
-            printf("  %-18s resends %lu, NAKs %lu, bad lines/frames %lu, dup frames %lu, "
-                   "gap frames %lu\n", "retransmits", rt.resends, rt.naks, rt.bad, rt.dups, rt.gaps);
-            printf("  %-18s %.2f\n", "run ms", rt.run_us / 1000.0);
-            if (ro.csv || ro.gcode || ro.svg) {
-                printf("  %-18s %lu points%s%s%s%s%s%s\n", "written", written,
-                       ro.csv ? ", csv " : "", ro.csv ? ro.csv : "", ro.gcode ? ", gcode " : "",
-                       ro.gcode ? ro.gcode : "", ro.svg ? ", svg " : "", ro.svg ? ro.svg : "");
-            }
-        }
-        printf("  %-18s %.2f\n", "handshake ms", (double)(t_hs - t_start) / 1000.0);
-        printf("  %-18s %.2f\n", "elapsed ms", (double)(sim_link_now_us() - t_start) / 1000.0);
+/* The totals over the RUN/RESUME streams (summary rows). */
+static void report_runs(unsigned long written)
+{
+    printf("  %-18s %lu (%s%s), hang-ups %lu, resumes %lu\n", "runs", rt.runs,
+           js.frames ? "FRAMES" : "GCODE", !js.frames && js.checksum ? "+CHECKSUM" : "",
+           rt.hangups, rt.resumes);
+    printf("  %-18s %lu\n", "points", rt.points);
+    printf("  %-18s in %llu, out %llu\n", "run bytes", rt.bytes_in, rt.bytes_out);
+    printf("  %-18s %.2f\n", "bytes/point", rt.points ? (double)rt.bytes_in / rt.points : 0.0);
+    printf("  %-18s %.0f\n", "points/s", rt.run_us > 0.0 ? rt.points / (rt.run_us / 1e6) : 0.0);
+    if (opt.baud > 0.0) {
+        printf("  %-18s %.1f%% at %.0f baud\n", "wire utilization",
+               rt.run_us > 0.0 ? 100.0 * rt.wire_us / rt.run_us : 0.0, opt.baud);
+    } else {
+        printf("  %-18s - (unpaced; use --baud N)\n", "wire utilization");
     }
+    printf("  %-18s resends %lu, NAKs %lu, bad lines/frames %lu, dup frames %lu, "
+           "gap frames %lu\n",
+           "retransmits", rt.resends, rt.naks, rt.bad, rt.dups, rt.gaps);
+    printf("  %-18s %.2f\n", "run ms", rt.run_us / 1000.0);
+    if (opt.csv || opt.gcode || opt.svg) {
+        printf("  %-18s %lu points%s%s%s%s%s%s\n", "written", written, opt.csv ? ", csv " : "",
+               opt.csv ? opt.csv : "", opt.gcode ? ", gcode " : "", opt.gcode ? opt.gcode : "",
+               opt.svg ? ", svg " : "", opt.svg ? opt.svg : "");
+    }
+}
+
+/* 4. summary, then the judge's table */
+static void sim_report(struct sim_session *s)
+{
+    unsigned long n = stats.ok + stats.error;
+    double med = 0.0;
+    unsigned long written = sim_out_close();
+    if (n > 0) {
+        qsort(rtts, n, sizeof *rtts, cmp_double);
+        med = n % 2u ? rtts[n / 2u] : (rtts[n / 2u - 1u] + rtts[n / 2u]) / 2.0;
+    }
+    printf("sim: summary\n");
+    printf("  %-18s %lu of %lu\n", "commands sent", stats.sent, (unsigned long)s->job.n);
+    printf("  %-18s ok %lu, error %lu, info lines %lu, unknown %lu\n", "replies", stats.ok,
+           stats.error, stats.info, stats.unknown);
+    printf("  %-18s out %llu, in %llu\n", "bytes", s->link.bytes_out, s->link.bytes_in);
+    if (n > 0) {
+        printf("  %-18s min %.3f, median %.3f, max %.3f\n", "round trip ms", rtts[0], med,
+               rtts[n - 1u]);
+    }
+    if (rt.runs > 0) {
+        report_runs(written);
+    }
+    printf("  %-18s %.2f\n", "handshake ms", (double)(s->t_hs - s->t_start) / 1000.0);
+    printf("  %-18s %.2f\n", "elapsed ms", (double)(sim_link_now_us() - s->t_start) / 1000.0);
     sim_check_report(stdout, &checks.passed, &checks.failed);
+}
+
+int main(int argc, char **argv)
+{
+    static struct sim_session s;
+    const char *msg;
+    int rc;
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    if ((msg = sim_parse_args(argc, argv, &opt)) != NULL) {
+        return usage(msg);
+    }
+    rc = sim_setup(&s);
+    if (rc == -1) {
+        checks.failed++;
+        finish_line();
+        return 2;
+    }
+    if (rc != 0) {
+        return sim_setup_fail(&s);
+    }
+    sim_signals();
+    s.t_start = sim_link_now_us();
+    sim_command(&s);
+    if (sim_session(&s) == -2) {
+        return sim_setup_fail(&s);
+    }
+    sim_shutdown(&s);
+    sim_report(&s);
     if (raw_file != NULL) {
         fclose(raw_file);
     }
-    if (log != NULL) {
-        fclose(log);
+    if (s.log != NULL) {
+        fclose(s.log);
     }
-    sim_job_free(&job);
+    sim_job_free(&s.job);
     free(rtts);
     finish_line();
-    if (interrupted || sim_stop) {
+    if (s.interrupted || sim_stop) {
         return 130;
     }
     return checks.failed == 0 ? 0 : 1;
-
-setup_fail: /* nothing was spawned, or the child is already gone */
-    if (log != NULL) {
-        fclose(log);
-    }
-    if (raw_file != NULL) {
-        fclose(raw_file);
-    }
-    (void)sim_out_close();
-    sim_job_free(&job);
-    free(rtts);
-    checks.failed++;
-    finish_line();
-    return 2;
 }
