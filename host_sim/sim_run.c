@@ -612,89 +612,127 @@ int sim_run_send(struct sim_link *l, const char *s, size_t n, double byte_us, ui
     return sim_link_send(l, s, n, deadline_ms);
 }
 
-int sim_run_stream(struct sim_link *l, const struct sim_run_opts *o, struct sim_run_result *r)
+/* A stream starts: u set up; the bytes the line reader already holds belong to this run.
+ * 0, or SIM_LINK_IOERR. */
+static int run_start(struct run *u, struct sim_link *l, const struct sim_run_opts *o,
+                     struct sim_run_result *r)
 {
-    static struct run u;
-    int rc = 0;
-    memset(&u, 0, sizeof u);
+    memset(u, 0, sizeof *u);
     memset(r, 0, sizeof *r);
     r->end_status = -1;
-    u.l = l;
-    u.o = o;
-    u.r = r;
-    u.t_cmd = sim_link_now_us();
-    u.t_last_rx = u.t_cmd;
-    u.t_prog = u.t_cmd;
-    u.dlast = (double)u.t_cmd;
-    u.hfree = (double)u.t_cmd;
-    u.expect_n = 1;
-    u.nak_for = -1;
-    frame_rx_init(&u.fr);
-    /* bytes the line reader already holds belong to this run */
+    u->l = l;
+    u->o = o;
+    u->r = r;
+    u->t_cmd = sim_link_now_us();
+    u->t_last_rx = u->t_cmd;
+    u->t_prog = u->t_cmd;
+    u->dlast = (double)u->t_cmd;
+    u->hfree = (double)u->t_cmd;
+    u->expect_n = 1;
+    u->nak_for = -1;
+    frame_rx_init(&u->fr);
     if (l->len > 0) {
-        u.icap = 65536u;
-        u.ib = malloc(u.icap);
-        u.ia = malloc(u.icap * sizeof *u.ia);
-        if (u.ib == NULL || u.ia == NULL) {
-            rc = SIM_LINK_IOERR;
-            goto out;
+        u->icap = 65536u;
+        u->ib = malloc(u->icap);
+        u->ia = malloc(u->icap * sizeof *u->ia);
+        if (u->ib == NULL || u->ia == NULL) {
+            return SIM_LINK_IOERR;
         }
-        memcpy(u.ib, l->buf, l->len);
-        for (u.ilen = 0; u.ilen < l->len; u.ilen++) {
-            u.ia[u.ilen] = u.t_cmd;
+        memcpy(u->ib, l->buf, l->len);
+        for (u->ilen = 0; u->ilen < l->len; u->ilen++) {
+            u->ia[u->ilen] = u->t_cmd;
         }
         l->len = 0;
     }
-    while (!u.done) {
-        double now = (double)sim_link_now_us(), wake;
-        struct timeval tv;
-        fd_set rd;
-        /* deliver what is due, in order */
-        while (u.ihead < u.ilen && !u.done) {
-            double d = dmax((double)u.ia[u.ihead], u.dlast) + o->byte_us;
-            uint8_t c;
-            unsigned long long i = u.raw_i;
-            if (d > now) {
-                break;
-            }
-            c = u.ib[u.ihead++];
-            u.dlast = d;
-            u.raw_i++;
-            if (o->raw != NULL) {
-                fputc(c, o->raw);
-            }
-            if (o->fault != SIM_FAULT_NONE && i == o->fault_at) {
-                if (o->fault == SIM_FAULT_HANGUP) {
-                    r->hung = 1;
-                    sim_link_log(l, "!", "fault: hang-up", 14);
-                    sim_pty_hangup(l->pty);
-                    rc = SIM_LINK_EOF;
-                    goto out;
-                }
-                if (o->fault == SIM_FAULT_DROP) {
-                    sim_link_log(l, "!", "fault: byte dropped", 19);
-                    continue;
-                }
-                if (o->fault == SIM_FAULT_FLIP) {
-                    sim_link_log(l, "!", "fault: bit 0 flipped", 20);
-                    c ^= 0x01u;
-                } else {
-                    sim_link_log(l, "!", "fault: byte duplicated", 22);
-                    run_deliver(&u, c);
-                }
-            }
-            run_deliver(&u, c);
-        }
-        rc = run_flush(&u, u.done);
-        if (rc < 0 || u.done) {
+    return 0;
+}
+
+/* Deliver the bytes that are due at now, in order, with the fault injected at its byte.
+ * 0, or SIM_LINK_EOF after an injected hang-up. */
+static int run_deliver_due(struct run *u, double now)
+{
+    const struct sim_run_opts *o = u->o;
+    while (u->ihead < u->ilen && !u->done) {
+        double d = dmax((double)u->ia[u->ihead], u->dlast) + o->byte_us;
+        uint8_t c;
+        unsigned long long i = u->raw_i;
+        if (d > now) {
             break;
         }
-        run_progress(&u, 0);
-        rc = run_read(&u);
+        c = u->ib[u->ihead++];
+        u->dlast = d;
+        u->raw_i++;
+        if (o->raw != NULL) {
+            fputc(c, o->raw);
+        }
+        if (o->fault != SIM_FAULT_NONE && i == o->fault_at) {
+            if (o->fault == SIM_FAULT_HANGUP) {
+                u->r->hung = 1;
+                sim_link_log(u->l, "!", "fault: hang-up", 14);
+                sim_pty_hangup(u->l->pty);
+                return SIM_LINK_EOF;
+            }
+            if (o->fault == SIM_FAULT_DROP) {
+                sim_link_log(u->l, "!", "fault: byte dropped", 19);
+                continue;
+            }
+            if (o->fault == SIM_FAULT_FLIP) {
+                sim_link_log(u->l, "!", "fault: bit 0 flipped", 20);
+                c ^= 0x01u;
+            } else {
+                sim_link_log(u->l, "!", "fault: byte duplicated", 22);
+                run_deliver(u, c);
+            }
+        }
+        run_deliver(u, c);
+    }
+    return 0;
+}
+
+/* Sleep until the next byte is due, a queued host reply is due, the pty is readable or a
+ * slice has passed. */
+static void run_wait(struct run *u, double now)
+{
+    double wake = now + SIM_LINK_SLICE_MS * 1000.0;
+    struct timeval tv;
+    fd_set rd;
+    if (u->ihead < u->ilen) {
+        double d = dmax((double)u->ia[u->ihead], u->dlast) + u->o->byte_us;
+        wake = d < wake ? d : wake;
+    }
+    if (u->qn > 0) {
+        wake = u->q[u->qh].due < wake ? u->q[u->qh].due : wake;
+    }
+    if (wake <= now) {
+        return;
+    }
+    FD_ZERO(&rd);
+    FD_SET(u->l->pty->master, &rd);
+    tv.tv_sec = 0;
+    tv.tv_usec = (long)(wake - now) + 1;
+    (void)select(u->l->pty->master + 1, &rd, NULL, NULL, &tv);
+}
+
+/* Read, deliver and answer until the terminal reply (u->done) or an end of the link. */
+static int run_loop(struct run *u)
+{
+    struct sim_link *l = u->l;
+    int rc = 0;
+    while (!u->done) {
+        double now = (double)sim_link_now_us();
+        rc = run_deliver_due(u, now);
+        if (rc < 0) {
+            break;
+        }
+        rc = run_flush(u, u->done);
+        if (rc < 0 || u->done) {
+            break;
+        }
+        run_progress(u, 0);
+        rc = run_read(u);
         if (rc < 0) {
             /* the firmware is gone: whatever arrived is still delivered */
-            if (u.ihead < u.ilen) {
-                now = (double)sim_link_now_us();
+            if (u->ihead < u->ilen) {
                 continue;
             }
             break;
@@ -704,66 +742,69 @@ int sim_run_stream(struct sim_link *l, const struct sim_run_opts *o, struct sim_
             break;
         }
         now = (double)sim_link_now_us();
-        if (u.ihead == u.ilen && now - (double)u.t_last_rx > (double)o->timeout_ms * 1000.0) {
+        if (u->ihead == u->ilen && now - (double)u->t_last_rx > (double)u->o->timeout_ms * 1000.0) {
             rc = SIM_LINK_TIMEOUT;
             break;
         }
-        if (u.ihead == u.ilen && sim_pty_exited(l->pty)) {
-            rc = run_read(&u);
-            if (u.ihead == u.ilen) {
+        if (u->ihead == u->ilen && sim_pty_exited(l->pty)) {
+            rc = run_read(u);
+            if (u->ihead == u->ilen) {
                 rc = SIM_LINK_EXITED;
                 break;
             }
             continue;
         }
-        wake = now + SIM_LINK_SLICE_MS * 1000.0;
-        if (u.ihead < u.ilen) {
-            double d = dmax((double)u.ia[u.ihead], u.dlast) + o->byte_us;
-            wake = d < wake ? d : wake;
-        }
-        if (u.qn > 0) {
-            wake = u.q[u.qh].due < wake ? u.q[u.qh].due : wake;
-        }
-        if (wake <= now) {
-            continue;
-        }
-        FD_ZERO(&rd);
-        FD_SET(l->pty->master, &rd);
-        tv.tv_sec = 0;
-        tv.tv_usec = (long)(wake - now) + 1;
-        (void)select(l->pty->master + 1, &rd, NULL, NULL, &tv);
+        run_wait(u, now);
     }
-out:
-    if (u.done) {
+    return rc;
+}
+
+/* The stream ended with rc: hand back what follows the terminal reply, close the judge's
+ * run, fill the durations and utilizations. Returns the result code. */
+static int run_end(struct run *u, int rc)
+{
+    struct sim_link *l = u->l;
+    struct sim_run_result *r = u->r;
+    const struct sim_run_opts *o = u->o;
+    double tend;
+    if (u->done) {
         rc = SIM_LINK_REPLY;
         /* anything after the terminal reply goes back to the line reader */
-        if (u.ihead < u.ilen) {
-            size_t n = u.ilen - u.ihead;
+        if (u->ihead < u->ilen) {
+            size_t n = u->ilen - u->ihead;
             if (n > sizeof l->buf) {
                 n = sizeof l->buf;
             }
-            memcpy(l->buf, u.ib + u.ihead, n);
+            memcpy(l->buf, u->ib + u->ihead, n);
             l->len = n;
         }
     }
     r->rc = rc;
-    if (u.began) {
-        sim_check_run_end(u.done && !r->error);
+    if (u->began) {
+        sim_check_run_end(u->done && !r->error);
     }
-    {
-        double tend = u.done ? u.t_done : (double)sim_link_now_us();
-        r->dur_us = tend - (double)u.t_cmd;
-        r->first_byte_us = u.t_first > 0.0 ? u.t_first - (double)u.t_cmd : 0.0;
-        r->stream_us = u.t_first > 0.0 ? tend - u.t_first + o->byte_us : 0.0;
-        if (o->byte_us > 0.0 && r->dur_us > 0.0) {
-            r->util = (double)r->bytes_in * o->byte_us / r->dur_us;
-        }
-        if (o->byte_us > 0.0 && r->stream_us > 0.0) {
-            r->util_stream = (double)r->bytes_in * o->byte_us / r->stream_us;
-        }
+    tend = u->done ? u->t_done : (double)sim_link_now_us();
+    r->dur_us = tend - (double)u->t_cmd;
+    r->first_byte_us = u->t_first > 0.0 ? u->t_first - (double)u->t_cmd : 0.0;
+    r->stream_us = u->t_first > 0.0 ? tend - u->t_first + o->byte_us : 0.0;
+    if (o->byte_us > 0.0 && r->dur_us > 0.0) {
+        r->util = (double)r->bytes_in * o->byte_us / r->dur_us;
     }
-    run_progress(&u, 1);
-    free(u.ib);
-    free(u.ia);
+    if (o->byte_us > 0.0 && r->stream_us > 0.0) {
+        r->util_stream = (double)r->bytes_in * o->byte_us / r->stream_us;
+    }
+    run_progress(u, 1);
+    free(u->ib);
+    free(u->ia);
     return rc;
+}
+
+int sim_run_stream(struct sim_link *l, const struct sim_run_opts *o, struct sim_run_result *r)
+{
+    static struct run u;
+    int rc = run_start(&u, l, o, r);
+    if (rc == 0) {
+        rc = run_loop(&u);
+    }
+    return run_end(&u, rc);
 }
