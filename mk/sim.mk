@@ -18,6 +18,10 @@ POSIX_SRC   := $(wildcard hal/posix/*.c)
 POSIX_OBJ   := $(patsubst hal/posix/%.c,$(BUILD)/host/posix/%.o,$(POSIX_SRC))
 HOSTSIM_SRC := $(wildcard host_sim/*.c)
 HOSTSIM_OBJ := $(patsubst host_sim/%.c,$(BUILD)/host/host_sim_obj/%.o,$(HOSTSIM_SRC))
+# one judge per row of firmware/models.def (CP_MODEL(NAME, name, ...)): host_sim/judge_<name>.c
+# (in HOSTSIM_SRC) and its reference tests/ref_<name>.c
+SIM_MODELS  := $(shell sed -n 's/^CP_MODEL[^,]*, *\([a-z0-9_]*\),.*/\1/p' firmware/models.def)
+HOSTSIM_REF := $(patsubst %,$(BUILD)/host/host_sim_obj/ref_%.o,$(SIM_MODELS))
 
 .PHONY: fw-native host-sim fw-fake sim-native sim-qemu sim-robust
 
@@ -37,11 +41,7 @@ $(BUILD)/host/fw_native: $(HOST_FW_OBJ) $(POSIX_OBJ)
 
 ## host-sim: build build/host/host_sim (pty host simulator, docs/HOST_SIM.md)
 host-sim: $(BUILD)/host/host_sim
-$(BUILD)/host/host_sim: $(HOSTSIM_OBJ) $(BUILD)/host/host_sim_obj/ref_canal.o \
-                       $(BUILD)/host/host_sim_obj/ref_drc.o \
-                       $(BUILD)/host/host_sim_obj/ref_channel.o \
-                       $(BUILD)/host/host_sim_obj/ref_gsr.o \
-                       $(BUILD)/host/host_sim_obj/frame.o
+$(BUILD)/host/host_sim: $(HOSTSIM_OBJ) $(HOSTSIM_REF) $(BUILD)/host/host_sim_obj/frame.o
 	$(Q)$(CC) -o $@ $^ -lm
 
 # the frame codec is portable C: host_sim links firmware/frame.c (FRAMES receiver)
@@ -49,23 +49,8 @@ $(BUILD)/host/host_sim_obj/frame.o: firmware/frame.c firmware/frame.h
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
 
-# the judge's independent reference model (no firmware code)
-$(BUILD)/host/host_sim_obj/ref_canal.o: tests/ref_canal.c tests/ref_canal.h
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
-
-# the DRC judge's independent reference (tests/ref_drc.c, no firmware code)
-$(BUILD)/host/host_sim_obj/ref_drc.o: tests/ref_drc.c tests/ref_drc.h
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
-
-# the channel judge's independent reference (tests/ref_channel.c, no firmware code)
-$(BUILD)/host/host_sim_obj/ref_channel.o: tests/ref_channel.c tests/ref_channel.h
-	@mkdir -p $(@D)
-	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
-
-# the GSR judge's independent reference (tests/ref_gsr.c, no firmware code)
-$(BUILD)/host/host_sim_obj/ref_gsr.o: tests/ref_gsr.c tests/ref_gsr.h
+# each judge's independent reference model, tests/ref_<name>.c (no firmware code)
+$(BUILD)/host/host_sim_obj/ref_%.o: tests/ref_%.c tests/ref_%.h
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(SIM_CFLAGS) -Itests -MMD -MP -c $< -o $@
 
