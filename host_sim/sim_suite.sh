@@ -160,6 +160,11 @@ models)
             result "${job}_qemu" 1 "($QEMU not found: apt-get install qemu-system-arm)"
         fi
     done
+    # the canal's judge (row 0 of the judge table; its rows carry no model prefix) fails too
+    SIM_JUDGE_PERTURB_K=10 hs canal_paper_frames_wrong native --job "$J/paper_frames.job"
+    r0=$?
+    if [ $r0 -eq 1 ] && grep -q "FAIL judge line" "$OUT/canal_paper_frames_wrong.out"; then r0=0; else r0=1; fi
+    result canal_paper_frames_judge_fails $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge [a-z]*" "$OUT/canal_paper_frames_wrong.out" | tr '\n' ' '))"
     ;;
 *)
     echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models" >&2
