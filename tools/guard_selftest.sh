@@ -5,7 +5,8 @@
 # Prints "guard-selftest: N passed, N failed".
 # SPDX-License-Identifier: MIT
 #
-# env: CC HOST_CFLAGS M4F_CC M4F_FWFLAGS M4F_LDFLAGS M4F_STACK SCRATCH
+# env: CC HOST_CFLAGS M4F_CC M4F_FWFLAGS M4F_LDFLAGS SCRATCH, M4F_LDBUDGET (the
+# --defsym CP_FLASH/CP_RAM/CP_STACK of linker/mps2_an386.ld for the image: mk/m4f.mk M4F_LD_BUDGET)
 # args: the M4F port objects (startup, UART port, main_cm) to link a scratch fw.elf.
 # Injected code is linked with -Wl,-u,<symbol>: --gc-sections would otherwise drop
 # an uncalled function, and a real call site keeps it the same way.
@@ -34,7 +35,7 @@ build() {
     done
     [ "$4" = yes ] || return 0
     # shellcheck disable=SC2086
-    $M4F_CC $M4F_LDFLAGS -T mps2_an386.ld -Wl,--defsym=CP_STACK="$M4F_STACK" $3 \
+    $M4F_CC $M4F_LDFLAGS -T mps2_an386.ld $M4F_LDBUDGET $3 \
         -o "$d/fw.elf" "$d"/m4f/*.o $port_obj -lm || return 1
 }
 
