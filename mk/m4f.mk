@@ -72,7 +72,8 @@ M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
 M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
-        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images
+        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images \
+        guard-fnlen
 
 ##
 ## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
@@ -256,14 +257,22 @@ GUARD_WARN_ARGS = CC="$(CC)" CLANG="$(CLANG)" M4F_CC="$(M4F_CC)" \
 guard-warn:
 	$(Q)$(GUARD_WARN_ARGS) sh tools/guard.sh warn guard-warn $(FW_SRC) $(wildcard hal/*/*.c)
 
-## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt
+## guard-fnlen: no function longer than FN_LINES_MAX (120) lines, signature to closing
+##              brace, in firmware/ and host_sim/ (any depth; tools/guard_fnlen.sh, word "guard-fnlen")
+FN_LINES_MAX ?= 120
+guard-fnlen:
+	$(Q)sh tools/guard_fnlen.sh guard-fnlen $(FN_LINES_MAX) \
+	    $$(find firmware host_sim -name '*.[ch]' | LC_ALL=C sort)
+
+## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt,
+##                 and guard-fnlen on a function one line over FN_LINES_MAX
 # (its scratch fw.elf is linked from ordinary objects, without LTO: the canal set, with
 # the canal image's budget)
 guard-selftest: $(M4F_PORT_OBJ)
 	$(Q)CC="$(CC)" M4F_CC="$(M4F_CC)" HOST_CFLAGS="$(HOST_CFLAGS)" \
 	    M4F_FWFLAGS="$(M4F_FWFLAGS) $(M4F_SET_$(M4F_BASE_SET))" M4F_LDFLAGS="$(M4F_LDFLAGS)" \
 	    M4F_LDBUDGET="$(call M4F_LD_BUDGET,$(M4F_BASE_SET))" \
-	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" \
+	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" FNLEN_MAX="$(FN_LINES_MAX)" \
 	    sh tools/guard_selftest.sh $(M4F_PORT_OBJ)
 
 ##
