@@ -29,7 +29,7 @@ awk -v max="$max" -v word="$word" '
     # column-0 text outside a body: a signature (or a declaration: it ends with `;`)
     !inbody && /^[A-Za-z_]/ { if (sig == "" || sigdone) { sig = ""; sigl = FNR; sigdone = 0 }
         sig = sig " " $0; if ($0 ~ /;[ \t]*$/) sigdone = 1 }
-    !inbody && /^[ \t]/ && sig != "" && !sigdone { sig = sig " " $0 }
+    !inbody && /^[ \t]/ && sig != "" && !sigdone { sig = sig " " $0; if ($0 ~ /;[ \t]*$/) sigdone = 1 }
     !inbody && (/^\{[ \t]*$/ || (/^[A-Za-z_].*\)[ \t]*\{[ \t]*$/ && $0 !~ /=/)) {
         if (sig != "" && !sigdone && index(sig, "(") && sig !~ /=[ \t]*(\{|$)/) {
             inbody = 1; start = sigl; nm = name_of(sig) }
@@ -38,5 +38,5 @@ awk -v max="$max" -v word="$word" '
     inbody && /^\}/ { inbody = 0; len = FNR - start + 1
         if (len > max) { bad++; printf "  %s:%d: %s %d lines (limit %d)\n", file, start, nm, len, max }
         else good++ }
-    END { unclosed(); printf "%s: %d passed, %d failed\n", word, good, bad; exit bad > 0 }
+    END { unclosed(); printf "%s: %d passed, %d failed\n", word, good, bad; exit (bad > 0) }
 ' "$@"
