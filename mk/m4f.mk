@@ -157,7 +157,9 @@ $(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
-.SECONDARY: $(foreach s,$(M4F_IMG_SETS),$(call M4F_SET_OBJ,$(s)))
+# (the images too: guard-image-<set> builds fw-<set>.elf through the pattern rule, and
+# make would delete it afterwards as an intermediate file)
+.SECONDARY: $(foreach s,$(M4F_IMG_SETS),$(call M4F_SET_OBJ,$(s)) $(M4F)/fw-$(s).elf)
 
 $(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F_IMG_DIR)/set-%/path.o $(M4F_IMG_DIR)/set-%/job.o \
                  $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
@@ -210,7 +212,8 @@ M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_
 
 ## guard-images: every product image fw-<set>.elf (the `image` rows of linker/budget.txt)
 ##               within its budget: flash <= its headroom line (free_pct of the budget
-##               free), RAM, per-function stack and the static worst stack path (word "images")
+##               free), RAM (.data + .bss + stack region, and + the worst stack path),
+##               per-function stack and the static worst stack path (word "images")
 # Each image is built by its guard-image-<set> (a link that overflows the budget is that
 # image's FAIL, with the linker's "overflowed by" in the log tail).
 guard-images:
@@ -221,8 +224,9 @@ guard-images:
 	done; echo "images: $$pass passed, $$fail failed"; [ $$fail -eq 0 ]
 
 guard-image-%: $(M4F)/fw-%.elf
-	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard $*
-	$(Q)sh tools/stack.sh --guard $(call M4F_STACK_ARGS_SET,$*)
+	$(Q)sh tools/stack.sh --guard $(call M4F_STACK_ARGS_SET,$*) > $(M4F)/stack-$*.txt 2>&1; rc=$$?; \
+	cat $(M4F)/stack-$*.txt; sh tools/m4f_size.sh $< linker/budget.txt guard $* $(M4F)/stack-$*.txt && \
+	[ $$rc -eq 0 ]
 
 ## size-images: every product image's flash, its budget, % free, RAM with the worst stack,
 ##               and the per-model cost fw-<model>.elf - fw-canal.elf, as markdown tables

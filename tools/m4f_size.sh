@@ -3,9 +3,10 @@
 # the ELF section headers and the link map, compared against linker/budget.txt.
 # SPDX-License-Identifier: MIT
 # Usage:
-#   m4f_size.sh <fw.elf> <budget.txt> report|guard <set>
+#   m4f_size.sh <fw.elf> <budget.txt> report|guard <set> [<stack.sh output>]
 #       <set>: the image's model set, whose `image <set> <flash key>` row of budget.txt
-#       names its flash budget.
+#       names its flash budget. With tools/stack.sh's output for the image, guard also
+#       checks .data + .bss + the static worst stack path <= ram.
 #       report  print the figures and the largest symbols (always exits 0 if readable)
 #       guard   also print "guard-budget: N passed, N failed" and exit 1 on any failure:
 #               flash <= budget, flash <= headroom line (free_pct of the budget free),
@@ -15,7 +16,8 @@
 #       markdown tables for size-images: every image's flash, budget, % free, RAM with
 #       the static worst stack (<dir>/stack-<set>.txt, tools/stack.sh output) and the
 #       per-model cost fw-<set>.elf - fw-<base set>.elf. An image whose link failed
-#       (<dir>/link-<set>.log says "overflowed by N bytes") is shown as budget + N.
+#       because of its flash budget (<dir>/link-<set>.log: "region `FLASH' overflowed by
+#       N bytes") is shown as budget + N; any other link failure is printed and exits 1.
 #       Exits 1 if an image is over its headroom line or did not link.
 # Classification (generic, by section flags, so new sections are never missed):
 #   allocated section in FLASH                 -> flash
@@ -65,7 +67,7 @@ if [ "$1" = table ]; then
     for s in "$@"; do
         elf=$dir/fw-$s.elf; key=$(flash_key "$s"); B_FLASH=$(b "$key")
         if [ -z "$B_FLASH" ]; then echo "m4f_size: no 'image $s' row (or its flash key) in $budget"; exit 1; fi
-        over=$(sed -n 's/.*overflowed by \([0-9]*\) bytes.*/\1/p' "$dir/link-$s.log" 2>/dev/null | head -n 1)
+        over=$(sed -n "s/.*region .FLASH' overflowed by \([0-9]*\) bytes.*/\1/p" "$dir/link-$s.log" 2>/dev/null | head -n 1)
         worst=$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' "$dir/stack-$s.txt" 2>/dev/null)
         if [ -n "$over" ]; then flash=$((B_FLASH + over)); ram=-1; bad=1
         elif [ -f "$elf" ] && [ -f "$elf.map" ] && [ -z "$(grep -il error "$dir/link-$s.log" 2>/dev/null)" ]; then
@@ -104,7 +106,7 @@ if [ "$1" = table ]; then
     exit $bad
 fi
 
-elf=$1; budget=$2; mode=${3:-report}; set=$4
+elf=$1; budget=$2; mode=${3:-report}; set=$4; stackout=$5
 map=$elf.map
 [ -f "$elf" ] && [ -f "$map" ] || { echo "m4f_size: need $elf and $map"; exit 1; }
 [ -n "$set" ] || { echo "m4f_size: usage: m4f_size.sh <fw.elf> <budget.txt> report|guard <set>"; exit 2; }
@@ -147,5 +149,12 @@ chk $([ "$stack" -eq "$B_STACK" ] && echo 1 || echo 0) "stack region $stack != b
 chk $([ "$fl_len" -eq "$B_FLASH" ] && echo 1 || echo 0) "linker FLASH LENGTH $fl_len != budget $key $B_FLASH"
 chk $([ "$ram_len" -eq "$B_RAM" ] && echo 1 || echo 0) "linker RAM LENGTH $ram_len != budget ram $B_RAM"
 chk $([ -z "$other" ] && echo 1 || echo 0) "sections outside FLASH/RAM:$other"
+if [ -n "$stackout" ]; then
+    worst=$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' "$stackout" 2>/dev/null)
+    if [ -n "$worst" ]; then
+        printf '  RAM .data+.bss + worst stack %d + %d = %d / %d bytes\n' "$ram" "$worst" $((ram + worst)) "$B_RAM"
+        chk $([ $((ram + worst)) -le "$B_RAM" ] && echo 1 || echo 0) ".data+.bss + worst stack $((ram + worst)) > budget ram $B_RAM"
+    else chk 0 "no 'worst case:' line in $stackout (tools/stack.sh)"; fi
+fi
 echo "guard-budget: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
