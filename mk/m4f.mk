@@ -157,9 +157,10 @@ $(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
-# (the images too: guard-image-<set> builds fw-<set>.elf through the pattern rule, and
-# make would delete it afterwards as an intermediate file)
-.SECONDARY: $(foreach s,$(M4F_IMG_SETS),$(call M4F_SET_OBJ,$(s)) $(M4F)/fw-$(s).elf)
+# (the images and the shared objects too: guard-image-<set> and size-images build each
+# fw-<set>.elf in its own sub-make through the pattern rules, and make would delete them
+# afterwards as intermediate files, so the next image's sub-make compiled them again)
+.SECONDARY: $(M4F_SHARED_OBJ) $(foreach s,$(M4F_IMG_SETS),$(call M4F_SET_OBJ,$(s)) $(M4F)/fw-$(s).elf)
 
 $(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F_IMG_DIR)/set-%/path.o $(M4F_IMG_DIR)/set-%/job.o \
                  $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
@@ -217,6 +218,7 @@ M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_
 # Each image is built by its guard-image-<set> (a link that overflows the budget is that
 # image's FAIL, with the linker's "overflowed by" in the log tail).
 guard-images:
+	@mkdir -p $(M4F)
 	$(Q)pass=0; fail=0; for s in $(M4F_IMG_SETS); do \
 	    if $(MAKE) --no-print-directory guard-image-$$s > $(M4F)/guard-$$s.log 2>&1; then \
 	        pass=$$((pass + 1)); echo "  PASS fw-$$s.elf: $$(sed -n 's/^  flash  *\([0-9]*\) \/ *\([0-9]*\) bytes.*headroom line \([0-9]*\).*/flash \1 B (budget \2 B, line \3 B)/p' $(M4F)/guard-$$s.log), $$(sed -n 's/^  RAM+stack *\([0-9]*\) \/ *\([0-9]*\) .*/RAM \1 of \2 B/p' $(M4F)/guard-$$s.log), stack $$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' $(M4F)/guard-$$s.log) B worst case"; \
@@ -233,6 +235,7 @@ guard-image-%: $(M4F)/fw-%.elf
 ##               (an image whose link overflows its budget is shown by how much); exits 1
 ##               if an image is over its headroom line
 size-images:
+	@mkdir -p $(M4F)
 	$(Q)for s in $(M4F_IMG_SETS); do \
 	    rm -f $(M4F)/link-$$s.log $(M4F)/stack-$$s.txt; \
 	    if $(MAKE) --no-print-directory $(M4F)/fw-$$s.elf > $(M4F)/link-$$s.log 2>&1; then \
