@@ -8,13 +8,21 @@
 # failure is one PASSED check. The --good mode is the positive control (exit 0).
 # A SIGINT to host_sim must stop it (exit 130) and kill its firmware too.
 # Prints "robust: N passed, N failed"; exits non-zero on any failure.
-# Env: BUILD (build), ROBUST_TIMEOUT_MS (1000), ROBUST_MARGIN_MS (1500).
+# Env: BUILD (build), ROBUST_TIMEOUT_MS (3000), ROBUST_MARGIN_MS (5000).
+# Timeouts (the rule of mk/m4f.mk: every wall-clock limit >= 5x the unloaded run time
+# of what it bounds; measured 2026-11-26). T is the per-reply timeout under test: the
+# good sessions need their answers within it, the slowest is lossy-start (its second $I
+# answered about 530 ms in), so T = 3000 ms >= 5 x 530 ms (was 1000 ms: 1.9x). T + M
+# bounds a whole case: the silent modes end at T + 20 ms, stubborn (no T wait: host_sim's
+# hang-up wait and 500 ms SIGTERM -> SIGKILL grace) at 1560 ms, so M = 5000 ms:
+# T + M = 8000 ms >= 5 x 1560 ms (was 2500 ms: 1.6x). The outer `timeout 30` only
+# guards against a hung host_sim (>= 5 x the 3020 ms of the silent cases).
 B=${BUILD:-build}/host
 HS=$B/host_sim
 FAKE=$B/fw_fake
 JOB=tests/jobs/handshake.job
-T=${ROBUST_TIMEOUT_MS:-1000}
-M=${ROBUST_MARGIN_MS:-1500}
+T=${ROBUST_TIMEOUT_MS:-3000}
+M=${ROBUST_MARGIN_MS:-5000}
 OUT=$B/robust
 mkdir -p "$OUT"
 pass=0; fail=0

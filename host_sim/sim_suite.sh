@@ -9,6 +9,10 @@
 # "<suite>: N passed, N failed"; exits 1 if any case failed.
 # Env: BUILD (build), QEMU (qemu-system-arm), SIM_BAUD (115200), SIM_MIN_UTIL (95),
 #      SIM_RUN_TIMEOUT (native reply timeout, ms, 5000), SIM_QEMU_TIMEOUT (20000).
+# Timeouts (the rule of mk/m4f.mk: >= 5x the unloaded run time, measured 2026-11-26):
+# the reply timeouts bound a reply (<= 6 ms, QEMU boot to the first answer <= 45 ms) and
+# a silence within a RUN (the firmware's retransmit timer PROTO_RTO_MS is 250 ms); a whole
+# session takes <= 13 s (baud: the paced paper job), so `timeout 600` is a hang guard only.
 B=${BUILD:-build}
 HS=$B/host/host_sim
 NAT=$B/host/fw_native

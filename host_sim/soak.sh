@@ -23,6 +23,10 @@
 # Env: BUILD (build), QEMU (qemu-system-arm), SOAK_SEED (1), SOAK_NATIVE / SOAK_QEMU
 #      (session counts, override the plan), SOAK_TN (native reply timeout ms, 5000),
 #      SOAK_TQ (QEMU reply timeout ms, 20000), SOAK_VERBOSE.
+# Timeouts (the rule of mk/m4f.mk: >= 5x the unloaded run time, measured 2026-11-26):
+# a native session takes <= 0.4 s, a QEMU session <= 1.9 s (soak-quick, the same session
+# sizes as full), so the per-session `timeout 600` / `timeout 900` are hang guards; the
+# reply timeouts as in host_sim/sim_suite.sh.
 B=${BUILD:-build}
 HS=$B/host/host_sim
 NAT=$B/host/fw_native

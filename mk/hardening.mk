@@ -28,6 +28,8 @@ soak-quick: $(BUILD)/host/fw_native $(BUILD)/host/host_sim $(M4F)/fw.elf
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) SOAK_SEED=$(SOAK_SEED) $(NICE) sh host_sim/soak.sh quick
 
 ## maxpoint: worst-case instructions per toolpath_next over whole jobs on QEMU, run twice (word "maxpoint")
+# (timeout 600 per QEMU run: one run takes about 1 s unloaded, 2026-11-26; the rule of
+# mk/m4f.mk is >= 5x. The counts are -icount instructions, not wall-clock.)
 maxpoint: $(M4F)/maxpoint.elf
 	$(Q)for i in 1 2; do \
 	    timeout 600 $(NICE) $(QEMU) -M mps2-an386 -display none -monitor none -serial null \

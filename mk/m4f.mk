@@ -4,8 +4,10 @@
 #
 # Included by the top Makefile (uses its BUILD, CROSS, WARN, FPFLAGS, INC, FW_SRC,
 # TEST_SRC, HOST_FW_OBJ, Q). Images under $(BUILD)/m4f:
-#   fw.elf     firmware/*.c + hal/cortex-m (startup, UART0/TIMER0 port, main_cm)
-#              linked with linker/mps2_an386.ld (FLASH/RAM lengths = budget)
+#   fw-<set>.elf  a product image: firmware/*.c (model set <set>) + hal/cortex-m (startup,
+#              UART0/TIMER0 port, main_cm) linked with linker/mps2_an386.ld, FLASH/RAM
+#              lengths = the image's budget (linker/budget.txt `image` rows)
+#   fw.elf     fw-all.elf (M4F_FW_SET), the all-features image
 #   unit.elf   the unit tests + firmware, printf/semihosting (linker/mps2_an386_test.ld)
 #   bench.elf  bench/bench_m4f.c + firmware + tests/hal_mem.c (instruction counts)
 #
@@ -21,13 +23,34 @@ M4F_SIZE := $(CROSS)size
 M4F_OBJDUMP := $(CROSS)objdump
 QEMU     ?= qemu-system-arm
 VALGRIND ?= valgrind
-QEMU_RUN := timeout 60 $(QEMU) -M mps2-an386 -display none -monitor none -serial null \
+# Wall-clock timeouts. The rule for every test of `make check` (mk/*.mk, tools/*.sh,
+# tools/*.py, host_sim/*.sh, and the --timeout-ms given to host_sim): a limit is at
+# least 5x the unloaded run time of what it bounds, so a CI machine whose other cores
+# are busy does not fail a passing test. Each limit says its measurement where it is
+# set (2026-11-26, 2 cores, load about 1). Instruction counts under -icount are not
+# wall-clock and are not subject to this rule. Raised on 2026-11-26: this QEMU_RUN
+# 60 -> 300 s; host_sim/robust.sh reply timeout 1000 -> 3000 ms and margin 1500 ->
+# 5000 ms; tools/m4f_stack_soak.py QEMU 300 -> 900 s. The rest were already >= 5x.
+# QEMU_RUN (m4f-unit, bench): m4f-unit runs 17 s unloaded and took 46 s of the old 60 s
+# with the other core busy; bench 1.7 s per run. 300 s >= 5 x 46 s.
+M4F_QEMU_TIMEOUT ?= 300
+QEMU_RUN := timeout $(M4F_QEMU_TIMEOUT) $(QEMU) -M mps2-an386 -display none -monitor none -serial null \
             -semihosting-config enable=on,target=native -icount shift=7 -kernel
 
-# Budgets: linker/budget.txt is the single source (key value lines).
+# Budgets: linker/budget.txt is the single source (`<key> <number>` and
+# `image <set> <flash key>` lines). M4F_IMG_SETS: the product images (guard-images,
+# size-images); M4F_FLASH,<set>: the flash budget of fw-<set>.elf; M4F_LD_BUDGET,<set>:
+# the linker's view of that budget (FLASH and RAM lengths, stack region).
 budget = $(shell awk '$$1=="$(1)" {print $$2}' linker/budget.txt)
+M4F_RAM      := $(call budget,ram)
 M4F_STACK    := $(call budget,stack)
 M4F_STACK_FN := $(call budget,stack_fn)
+M4F_IMG_SETS := $(shell awk '$$1=="image" {print $$2}' linker/budget.txt)
+M4F_FLASH     = $(call budget,$(shell awk '$$1=="image" && $$2=="$(1)" {print $$3}' linker/budget.txt))
+M4F_LD_BUDGET = -Wl,--defsym=CP_FLASH=$(call M4F_FLASH,$(1)) -Wl,--defsym=CP_RAM=$(M4F_RAM) \
+                -Wl,--defsym=CP_STACK=$(M4F_STACK)
+# the image the per-model costs are measured from (size-images): canal only
+M4F_BASE_SET := canal
 # Stack region of the test and bench images (they link printf and soft doubles).
 M4F_TEST_STACK ?= 65536
 
@@ -52,7 +75,8 @@ M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
 M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
-        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images
+        guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images \
+        guard-fnlen
 
 ##
 ## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
@@ -82,9 +106,9 @@ $(M4F)/bench/%.o: bench/%.c
 
 # Product images: the canal plus a set of surface models (cp_config.h CP_WITH_GSR,
 # CP_WITH_CHANNEL, CP_WITH_DRC). Only path.c and job.c depend on the set (struct
-# layouts do not). fw-<set>.elf per set; fw.elf is the set M4F_FW_SET: all four models
-# (the brief's budget is for that image). Every image of M4F_IMG_SETS is held to
-# linker/budget.txt by guard-images.
+# layouts do not). fw-<set>.elf per set; fw.elf is the set M4F_FW_SET: all four models,
+# the all-features image. Every image of M4F_IMG_SETS (the `image` rows of
+# linker/budget.txt) is held to its budget there by guard-images.
 #
 # The product images are built with link-time optimisation (M4F_LTO=1, default): the
 # firmware sources are compiled again into $(M4F)/lto/ as GIMPLE (-flto) and code is
@@ -100,13 +124,7 @@ M4F_SET_gsr     := -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
 M4F_SET_channel := -DCP_WITH_GSR=0 -DCP_WITH_DRC=0
 M4F_SET_drc     := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0
 M4F_SET_canal   := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
-M4F_SET_gsr-channel := -DCP_WITH_DRC=0
-M4F_SET_gsr-drc     := -DCP_WITH_CHANNEL=0
-M4F_SET_channel-drc := -DCP_WITH_GSR=0
-# size-images reports these too (not guarded): the two-model sets and all four
-M4F_SIZE_SETS ?= canal gsr channel drc gsr-channel gsr-drc channel-drc all
 M4F_FW_SET   ?= all
-M4F_IMG_SETS ?= all canal gsr channel drc
 M4F_LTO      ?= 1
 ifeq ($(M4F_LTO),1)
 M4F_IMG_DIR  := $(M4F)/lto
@@ -139,13 +157,17 @@ $(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
-.SECONDARY: $(foreach s,$(M4F_SIZE_SETS),$(call M4F_SET_OBJ,$(s)))
+# (the images and the shared objects too: guard-image-<set> and size-images build each
+# fw-<set>.elf in its own sub-make through the pattern rules, and make would delete them
+# afterwards as intermediate files, so the next image's sub-make compiled them again)
+.SECONDARY: $(M4F_SHARED_OBJ) $(foreach s,$(M4F_IMG_SETS),$(call M4F_SET_OBJ,$(s)) $(M4F)/fw-$(s).elf)
 
 $(M4F)/fw-%.elf: $(M4F_SHARED_OBJ) $(M4F_IMG_DIR)/set-%/path.o $(M4F_IMG_DIR)/set-%/job.o \
                  $(M4F_PORT_OBJ) linker/mps2_an386.ld linker/cortex_m_common.ld linker/budget.txt
+	@test -n "$(call M4F_FLASH,$*)" || { echo "fw-$*.elf: no 'image $*' row in linker/budget.txt"; exit 1; }
 	@mkdir -p $(M4F)/ltrans-$*
 	$(Q)$(M4F_CC) $(M4F_IMG_LD) $(call M4F_IMG_DUMP,$*) $(M4F_LDFLAGS) -T mps2_an386.ld \
-	    -Wl,--defsym=CP_STACK=$(M4F_STACK) -Wl,-Map=$@.map -o $@ $(M4F_SHARED_OBJ) \
+	    $(call M4F_LD_BUDGET,$*) -Wl,-Map=$@.map -o $@ $(M4F_SHARED_OBJ) \
 	    $(call M4F_SET_OBJ,$*) $(M4F_PORT_OBJ) -lm
 
 $(M4F)/fw.elf: $(M4F)/fw-$(M4F_FW_SET).elf
@@ -174,11 +196,12 @@ m4f-qemu-fw: $(M4F)/fw.elf
 ##
 ## size: flash, RAM and stack figures of fw.elf (from the ELF and link map) vs linker/budget.txt
 size: $(M4F)/fw.elf
-	$(Q)sh tools/m4f_size.sh $< linker/budget.txt report
+	$(Q)sh tools/m4f_size.sh $< linker/budget.txt report $(M4F_FW_SET)
 
-## guard-budget: fail if fw.elf exceeds linker/budget.txt (or the linker script disagrees)
+## guard-budget: fail if fw.elf exceeds its budget or headroom line in linker/budget.txt
+##               (or the linker's FLASH/RAM lengths disagree with it)
 guard-budget: $(M4F)/fw.elf
-	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard
+	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard $(M4F_FW_SET)
 
 M4F_STACK_ARGS = --elf $(M4F)/fw.elf --root Reset_Handler --isr "$(M4F_ISRS)" \
     --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
@@ -188,31 +211,38 @@ M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_
     --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
     $(call M4F_IMG_CI,$(1))
 
-## guard-images: every product image fw-<set>.elf (M4F_IMG_SETS) within linker/budget.txt:
-##               flash, RAM, per-function stack and the static worst stack path (word "images")
-guard-images: $(foreach s,$(M4F_IMG_SETS),$(M4F)/fw-$(s).elf)
+## guard-images: every product image fw-<set>.elf (the `image` rows of linker/budget.txt)
+##               within its budget: flash <= its headroom line (free_pct of the budget
+##               free), RAM (.data + .bss + stack region, and + the worst stack path),
+##               per-function stack and the static worst stack path (word "images")
+# Each image is built by its guard-image-<set> (a link that overflows the budget is that
+# image's FAIL, with the linker's "overflowed by" in the log tail).
+guard-images:
+	@mkdir -p $(M4F)
 	$(Q)pass=0; fail=0; for s in $(M4F_IMG_SETS); do \
 	    if $(MAKE) --no-print-directory guard-image-$$s > $(M4F)/guard-$$s.log 2>&1; then \
-	        pass=$$((pass + 1)); echo "  PASS fw-$$s.elf: $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"{t=$$2} $$1==".bss"{b=$$2} END{print "text " t " B, bss " b " B"}'), stack $$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' $(M4F)/guard-$$s.log) B worst case"; \
-	    else fail=$$((fail + 1)); echo "  FAIL fw-$$s.elf (see $(M4F)/guard-$$s.log)"; tail -n 5 $(M4F)/guard-$$s.log; fi; \
+	        pass=$$((pass + 1)); echo "  PASS fw-$$s.elf: $$(sed -n 's/^  flash  *\([0-9]*\) \/ *\([0-9]*\) bytes.*headroom line \([0-9]*\).*/flash \1 B (budget \2 B, line \3 B)/p' $(M4F)/guard-$$s.log), $$(sed -n 's/^  RAM+stack *\([0-9]*\) \/ *\([0-9]*\) .*/RAM \1 of \2 B/p' $(M4F)/guard-$$s.log), stack $$(sed -n 's/^worst case: \([0-9]*\) bytes.*/\1/p' $(M4F)/guard-$$s.log) B worst case"; \
+	    else fail=$$((fail + 1)); echo "  FAIL fw-$$s.elf (see $(M4F)/guard-$$s.log)"; grep -E 'FAIL|overflowed|error' $(M4F)/guard-$$s.log | head -n 8; fi; \
 	done; echo "images: $$pass passed, $$fail failed"; [ $$fail -eq 0 ]
 
-## size-images: flash of every model set's image (M4F_SIZE_SETS: the guarded ones, the
-##               two-model sets and all four), or by how much the link overflows 32 KB
-size-images:
-	$(Q)for s in $(M4F_SIZE_SETS); do \
-	    out=$$($(MAKE) --no-print-directory $(M4F)/fw-$$s.elf 2>&1); \
-	    over=$$(printf '%s\n' "$$out" | sed -n 's/.*overflowed by \([0-9]*\) bytes.*/\1/p' | head -n 1); \
-	    if [ -n "$$over" ]; then printf '  %-24s %6d B flash: over the %d B budget by %d B\n' fw-$$s.elf $$(($(call budget,flash) + over)) $(call budget,flash) $$over; \
-	    elif [ -f $(M4F)/fw-$$s.elf ]; then printf '  %-24s %6d B flash: fits (%d B spare)\n' fw-$$s.elf \
-	        $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"||$$1==".isr_vector"||$$1==".data"{t+=$$2} END{print t}') \
-	        $$(($(call budget,flash) - $$($(M4F_SIZE) -A $(M4F)/fw-$$s.elf | awk '$$1==".text"||$$1==".isr_vector"||$$1==".data"{t+=$$2} END{print t}'))); \
-	    else printf '%s\n' "$$out" | tail -n 3; fi; \
-	done
-
 guard-image-%: $(M4F)/fw-%.elf
-	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard
-	$(Q)sh tools/stack.sh --guard $(call M4F_STACK_ARGS_SET,$*)
+	$(Q)sh tools/stack.sh --guard $(call M4F_STACK_ARGS_SET,$*) > $(M4F)/stack-$*.txt 2>&1; rc=$$?; \
+	cat $(M4F)/stack-$*.txt; sh tools/m4f_size.sh $< linker/budget.txt guard $* $(M4F)/stack-$*.txt && \
+	[ $$rc -eq 0 ]
+
+## size-images: every product image's flash, its budget, % free, RAM with the worst stack,
+##               and the per-model cost fw-<model>.elf - fw-canal.elf, as markdown tables
+##               (an image whose link overflows its budget is shown by how much); exits 1
+##               if an image is over its headroom line
+size-images:
+	@mkdir -p $(M4F)
+	$(Q)for s in $(M4F_IMG_SETS); do \
+	    rm -f $(M4F)/link-$$s.log $(M4F)/stack-$$s.txt; \
+	    if $(MAKE) --no-print-directory $(M4F)/fw-$$s.elf > $(M4F)/link-$$s.log 2>&1; then \
+	        sh tools/stack.sh $(call M4F_STACK_ARGS_SET,$$s) > $(M4F)/stack-$$s.txt 2>&1; \
+	    fi; \
+	done
+	$(Q)sh tools/m4f_size.sh table linker/budget.txt $(M4F) $(M4F_BASE_SET) $(M4F_IMG_SETS)
 
 ## stack: worst-case static stack path of fw.elf (from gcc .su/.ci) and the largest frames
 stack: $(M4F)/fw.elf
@@ -237,13 +267,22 @@ GUARD_WARN_ARGS = CC="$(CC)" CLANG="$(CLANG)" M4F_CC="$(M4F_CC)" \
 guard-warn:
 	$(Q)$(GUARD_WARN_ARGS) sh tools/guard.sh warn guard-warn $(FW_SRC) $(wildcard hal/*/*.c)
 
-## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt
-# (its scratch fw.elf is linked from ordinary objects, without LTO: the canal set, which
-# fits that way; the all-models image fits 32 KB only with LTO)
+## guard-fnlen: no function longer than FN_LINES_MAX (120) lines, signature to closing
+##              brace, in firmware/ and host_sim/ (any depth; tools/guard_fnlen.sh, word "guard-fnlen")
+FN_LINES_MAX ?= 120
+guard-fnlen:
+	$(Q)sh tools/guard_fnlen.sh guard-fnlen $(FN_LINES_MAX) \
+	    $$(find firmware host_sim -name '*.[ch]' | LC_ALL=C sort)
+
+## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt,
+##                 and guard-fnlen on a function one line over FN_LINES_MAX
+# (its scratch fw.elf is linked from ordinary objects, without LTO: the canal set, with
+# the canal image's budget)
 guard-selftest: $(M4F_PORT_OBJ)
 	$(Q)CC="$(CC)" M4F_CC="$(M4F_CC)" HOST_CFLAGS="$(HOST_CFLAGS)" \
-	    M4F_FWFLAGS="$(M4F_FWFLAGS) $(M4F_SET_canal)" M4F_LDFLAGS="$(M4F_LDFLAGS)" M4F_STACK="$(M4F_STACK)" \
-	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" \
+	    M4F_FWFLAGS="$(M4F_FWFLAGS) $(M4F_SET_$(M4F_BASE_SET))" M4F_LDFLAGS="$(M4F_LDFLAGS)" \
+	    M4F_LDBUDGET="$(call M4F_LD_BUDGET,$(M4F_BASE_SET))" \
+	    PORT_OBJ="$(M4F_PORT_OBJ)" SCRATCH="$(BUILD)/selftest" FNLEN_MAX="$(FN_LINES_MAX)" \
 	    sh tools/guard_selftest.sh $(M4F_PORT_OBJ)
 
 ##

@@ -10,6 +10,9 @@
 
 SIM_POSIX   := -D_XOPEN_SOURCE=600
 SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) -Ifirmware -Ihal -Ihost_sim -Itests
+# per-reply timeout of sim-native/sim-qemu (ms; the timeout rule of mk/m4f.mk: >= 5x the
+# unloaded time): the slowest reply is QEMU's boot to the first $I answer, 34-45 ms
+# (2026-11-26), other replies <= 7 ms; 2000 ms is 44x
 SIM_TIMEOUT ?= 2000
 SIM_JOB     ?= tests/jobs/handshake.job
 QEMU        ?= qemu-system-arm

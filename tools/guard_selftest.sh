@@ -2,10 +2,12 @@
 # guard_selftest.sh - prove that guard-alloc and guard-double bite: build scratch copies
 # of firmware/ with an injected offender and require tools/guard.sh to FAIL on them
 # (and to PASS on an untouched copy, so a broken harness cannot fake a "bite").
+# The same for guard-fnlen on generated functions of FNLEN_MAX and FNLEN_MAX + 1 lines.
 # Prints "guard-selftest: N passed, N failed".
 # SPDX-License-Identifier: MIT
 #
-# env: CC HOST_CFLAGS M4F_CC M4F_FWFLAGS M4F_LDFLAGS M4F_STACK SCRATCH
+# env: FNLEN_MAX (120), CC HOST_CFLAGS M4F_CC M4F_FWFLAGS M4F_LDFLAGS SCRATCH, M4F_LDBUDGET (the
+# --defsym CP_FLASH/CP_RAM/CP_STACK of linker/mps2_an386.ld for the image: mk/m4f.mk M4F_LD_BUDGET)
 # args: the M4F port objects (startup, UART port, main_cm) to link a scratch fw.elf.
 # Injected code is linked with -Wl,-u,<symbol>: --gc-sections would otherwise drop
 # an uncalled function, and a real call site keeps it the same way.
@@ -34,7 +36,7 @@ build() {
     done
     [ "$4" = yes ] || return 0
     # shellcheck disable=SC2086
-    $M4F_CC $M4F_LDFLAGS -T mps2_an386.ld -Wl,--defsym=CP_STACK="$M4F_STACK" $3 \
+    $M4F_CC $M4F_LDFLAGS -T mps2_an386.ld $M4F_LDBUDGET $3 \
         -o "$d/fw.elf" "$d"/m4f/*.o $port_obj -lm || return 1
 }
 
@@ -71,6 +73,29 @@ float selftest_inject_double(float x) { return (float)sqrt((double)x * 1.5); }' 
     expect fail double __aeabi_d "injected double sqrt: fw.elf" "$S/double/fw.elf"
     expect fail double __aeabi_ "injected double sqrt: M4F objects" "$S"/double/m4f/*.o
 else bad "double copy did not build"; fi
+
+# guard-fnlen (tools/guard_fnlen.sh): a function of exactly FNLEN_MAX lines, signature to
+# closing brace, passes; one line more fails and is named with its file:line and length.
+# fnfile <path> <name> <lines>: a C file with a struct, an initializer and that function
+fnfile() {
+    { echo "struct s {"; echo "    int a;"; echo "};"; echo "static const int t[] = {"
+      echo "    1, 2,"; echo "};"; echo ""; echo "int $2(int x);"
+      echo "int $2(int x)"; echo "{"; i=4; while [ $i -lt "$3" ]; do echo "    x += $i;"; i=$((i + 1)); done
+      echo "    return x + t[0];"; echo "}"; } > "$1"
+}
+FNLEN_MAX=${FNLEN_MAX:-120}
+mkdir -p "$S/fnlen"
+fnfile "$S/fnlen/ok.c" fits_exactly "$FNLEN_MAX"
+fnfile "$S/fnlen/long.c" one_too_long $((FNLEN_MAX + 1))
+out=$(sh tools/guard_fnlen.sh guard-fnlen "$FNLEN_MAX" "$S/fnlen/ok.c" 2>&1)
+if [ $? -eq 0 ] && printf '%s\n' "$out" | grep -q '^guard-fnlen: 1 passed, 0 failed$'; then
+    ok "guard-fnlen: a $FNLEN_MAX-line function passes"
+else bad "guard-fnlen: a $FNLEN_MAX-line function"; printf '%s\n' "$out"; fi
+want="$S/fnlen/long.c:9: one_too_long $((FNLEN_MAX + 1)) lines"
+out=$(sh tools/guard_fnlen.sh guard-fnlen "$FNLEN_MAX" "$S/fnlen/ok.c" "$S/fnlen/long.c" 2>&1)
+if [ $? -ne 0 ] && printf '%s\n' "$out" | grep -qF "$want"; then
+    ok "guard-fnlen: a $((FNLEN_MAX + 1))-line function fails -> $(printf '%s\n' "$out" | grep -F "$want" | sed 's/^ *//')"
+else bad "guard-fnlen: a $((FNLEN_MAX + 1))-line function (guard did not fail on it)"; printf '%s\n' "$out"; fi
 
 echo "guard-selftest: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -15,6 +15,7 @@ fi
 "$BUILD/host/fw_native" --pty "$link" 2>"$dir/fw.log" &
 fw=$!
 i=0; while [ ! -e "$link" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i+1)); done
+# timeout 60: the client runs 0.4 s unloaded (2026-11-26; the rule of mk/m4f.mk: >= 5x)
 out=$(timeout 60 $PY docs/examples/run_job.py "$link" tests/jobs/pyserial.job "$dir/out.ngc" 2>&1); rc=$?
 echo "$out" | sed 's/^/  /'
 kill $fw 2>/dev/null; wait $fw 2>/dev/null

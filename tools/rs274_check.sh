@@ -12,6 +12,7 @@ if ! command -v rs274 >/dev/null 2>&1; then
     echo "rs274: 0 passed, 1 failed"; exit 1
 fi
 pass=0; fail=0
+# timeout 120: sim-rs274 runs 0.4 s unloaded (2026-11-26; the rule of mk/m4f.mk: >= 5x)
 timeout 120 rs274 -g "$ngc" > "$out" 2>&1; rc=$?
 if [ $rc -eq 0 ] && ! grep -qi "error" "$out"; then pass=$((pass+1)); echo "  PASS rs274 -g ran the program, 0 errors"
 else fail=$((fail+1)); echo "  FAIL rs274 -g exit $rc:"; grep -v "^ *[0-9]* N\\.\\.\\.\\.\\." "$out" | head -5; fi

@@ -67,6 +67,8 @@ HS=$OUT/new/build/host/host_sim
 run() { # tree-tag name args...
     t=$1; name=$2; shift 2
     fw=$OUT/$t/build/host/fw_native
+    # native sessions of a few seconds at most: 600 s and 20 s per reply are hang guards
+    # (the rule of mk/m4f.mk: >= 5x the unloaded time)
     (cd "$NEW" && timeout 600 "$HS" --target native --fw "$fw" --timeout-ms 20000 \
         --raw "$OUT/$t/$name.raw" --csv "$OUT/$t/$name.csv" "$@") > "$OUT/$t/$name.out" 2>&1
 }
