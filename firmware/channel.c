@@ -21,7 +21,7 @@ enum { S_C = 3, S_X = 6, S_Z = 9 };
 
 CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), vec3_is_3_reals);
 CP_STATIC_ASSERT(sizeof(struct channel_section) == 12u * sizeof(cp_real), section_is_12_reals);
-CP_STATIC_ASSERT(offsetof(struct toolpath_pt, n) == 3u * sizeof(cp_real), pt_p_n_are_6_reals);
+CP_STATIC_ASSERT(offsetof(struct raster_pt, n) == 3u * sizeof(cp_real), pt_p_n_are_6_reals);
 
 #define SAG_MARGIN CP_R(0.8) /* aim the derived step counts at 80 % of the tolerance */
 
@@ -670,21 +670,21 @@ static CP_NOINLINE cp_real frac(const struct channel_path *cp, unsigned c, uint3
 /* Point k: output position and normal, t, line (-1: a link point), index in pt; surface
  * point s; through the row cache (key: u). Checks the row and the point: CP_OK,
  * CP_ERR_FRAME_REF, CP_ERR_AREA_LAW, CP_ERR_NUMERIC (non-finite), CP_ERR_FOLD (g <= 0). */
-static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struct cp_vec3 *s)
+static int at(struct channel_path *cp, uint32_t k, struct raster_pt *pt, struct cp_vec3 *s)
 {
     cp_real x[2], g, g2 = CP_R(0.0), *p = VR(&pt->p);
     const cp_real *n = CVR(&pt->n), *sv = CVR(s);
     struct raster_at ra;
-    uint32_t den = cp->steps;
-    unsigned al = cp->mode, ac = al ^ 1u, c; /* TOOLPATH_LINES = 0: along u */
-    raster_locate(k, cp->steps, cp->link, &ra);
+    uint32_t den = cp->head.steps;
+    unsigned al = cp->head.mode, ac = al ^ 1u, c; /* RASTER_LINES = 0: along u */
+    raster_locate(k, cp->head.steps, cp->head.link, &ra);
     if (ra.a != 0u) { /* a link: where line/ring j ends, the exact end of the range */
-        den = (uint32_t)cp->link + 1u;
+        den = (uint32_t)cp->head.link + 1u;
         x[al] = (ra.j & 1u) ? cp->lo[al] : cp->hi[al];
     } else {
         x[al] = frac(cp, al, ra.i, den);
     }
-    x[ac] = frac(cp, ac, ra.j * den + ra.a, ((uint32_t)cp->n - 1u) * den);
+    x[ac] = frac(cp, ac, ra.j * den + ra.a, ((uint32_t)cp->head.n - 1u) * den);
     pt->line = (int16_t)ra.line;
     pt->index = (uint16_t)ra.index;
     pt->t = x[0];
@@ -695,7 +695,7 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
     for (c = 0; c < 3u; c++) {
         p[c] = sv[c] - cp->tool_r * n[c]; /* ball centre inside the duct (0 with OUT_SURFACE) */
     }
-    if (cp->output == TOOLPATH_OUT_TIP) {
+    if (cp->output == RASTER_OUT_TIP) {
         pt->p.z -= cp->tool_r;
     }
     if (cp->row.flags & CHANNEL_ROW_FRAME) {
@@ -717,9 +717,9 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
  * n (steps + 1) + (n - 1) link. */
 static CP_NOINLINE uint32_t set_raster(struct channel_path *cp, uint32_t steps, uint32_t link)
 {
-    cp->steps = steps;
-    cp->link = (uint16_t)link;
-    return raster_count(cp->n, steps, link);
+    cp->head.steps = steps;
+    cp->head.link = (uint16_t)link;
+    return raster_count(cp->head.n, steps, link);
 }
 
 /* Walk the whole raster with seg[0] segments per line/ring and seg[1] per link, doubled
@@ -731,7 +731,7 @@ static CP_NOINLINE uint32_t set_raster(struct channel_path *cp, uint32_t steps, 
  * clamps. Work: the doubled raster's points. */
 static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_real *sag)
 {
-    struct toolpath_pt pt;
+    struct raster_pt pt;
     struct cp_vec3 sv;
     cp_real sp[3], op[2][3], dm[3], dc[3], cx[3];
     const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
@@ -749,7 +749,7 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
         if ((cp->row.flags & CHANNEL_ROW_CLAMP) && cp->ch.clamps < 0xFFFFu) {
             cp->ch.clamps++;
         }
-        if (k > 0u && cp->output != TOOLPATH_OUT_SURFACE) {
+        if (k > 0u && cp->output != RASTER_OUT_SURFACE) {
             sub(s, sp, dm);                /* surface step */
             sub(p, op[(k - 1u) & 1u], dc); /* output step */
             if (!(dot(dm, dc) > CP_R(0.0))) {
@@ -783,14 +783,14 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
 static const struct raster_rule channel_rule = {SAG_MARGIN, CP_R(1.0), 32u, 1u, 3u, 0u};
 
 int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
-                      const struct toolpath_cfg *rs)
+                      const struct raster_cfg *rs)
 {
     struct raster_fit fit;
     uint32_t seg[2], round;
     cp_real sag[2];
     int err;
-    cp->count = 0u;
-    cp->k = 0u;
+    cp->head.count = 0u;
+    cp->head.k = 0u;
     err = raster_check(rs, CP_PI);
     if (err == CP_OK && rs->tool_r > CHANNEL_COORD_MAX) {
         err = CP_ERR_TOOL;
@@ -808,8 +808,8 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     cp->hi[0] = (cp_real)(cp->ch.ns - 1u);
     /* the evaluation grid: whole rings (-pi..pi, CHANNEL_GRID_W samples) at CHANNEL_GRID_U
      * rows per segment, walked like a CIRCLES raster (fold, laws, frame, tool) */
-    cp->mode = TOOLPATH_CIRCLES;
-    cp->n = (uint16_t)((cp->ch.ns - 1u) * CHANNEL_GRID_U + 1u);
+    cp->head.mode = RASTER_CIRCLES;
+    cp->head.n = (uint16_t)((cp->ch.ns - 1u) * CHANNEL_GRID_U + 1u);
     cp->lo[1] = -CP_PI;
     cp->hi[1] = CP_PI;
     seg[0] = CHANNEL_GRID_W / 2u;
@@ -818,8 +818,8 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     if (err != CP_OK) {
         return err;
     }
-    cp->mode = rs->mode;
-    cp->n = rs->n;
+    cp->head.mode = rs->mode;
+    cp->head.n = rs->n;
     cp->lo[1] = rs->u0;
     cp->hi[1] = rs->u1;
     /* segments per line (q = 0) and per link (q = 1): given, else for the tolerance by
@@ -836,30 +836,30 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     if (err != CP_OK) {
         return err;
     }
-    cp->count = set_raster(cp, fit.m[0], fit.m[1] - 1u);
+    cp->head.count = set_raster(cp, fit.m[0], fit.m[1] - 1u);
     return CP_OK;
 }
 
 uint32_t channel_path_count(const struct channel_path *cp)
 {
-    return cp->count;
+    return cp->head.count;
 }
 
 int channel_path_seek(struct channel_path *cp, uint32_t k)
 {
-    return raster_seek(&cp->k, cp->count, k);
+    return raster_seek(&cp->head, k);
 }
 
-int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt)
+int channel_path_next(struct channel_path *cp, struct raster_pt *pt)
 {
     struct cp_vec3 s;
     int err;
-    if (cp->k >= cp->count) {
+    if (cp->head.k >= cp->head.count) {
         return CP_ERR_DONE;
     }
-    err = at(cp, cp->k, pt, &s);
+    err = at(cp, cp->head.k, pt, &s);
     if (err == CP_OK) {
-        cp->k++;
+        cp->head.k++;
     }
     return err;
 }

@@ -20,7 +20,7 @@
 void cp_sincos(cp_real x, cp_real *s, cp_real *c);
 
 /* The sincos kernel in two stages, so a caller can spread one evaluation over two
- * calls (toolpath.c makes the next line's label over the last two points of a line):
+ * calls (canal_path.c makes the next line's label over the last two points of a line):
  * cp_sincos_stage1 (argument reduction and the sine polynomial) then
  * cp_sincos_stage2 (the cosine polynomial and the quadrant). The pair performs
  * exactly the operations of cp_sincos_kernel on the same float values, so the

@@ -940,7 +940,7 @@ static void rlaw(const struct drc_path *it, cp_real sg, cp_real r[3])
     const cp_real *c = it->rp;
     cp_real is = ONE / it->s_tot, r0 = ZERO, r1 = ZERO, r2 = ZERO;
     int i;
-    if (it->rc->surf.radius == CANAL_R_COS) {
+    if (it->g->radius == CANAL_R_COS) {
         cp_real w = CP_TWO_PI * c[2], sn, cs;
         cp_sincos(w * sg, &sn, &cs);
         r0 = c[0] * cs + c[1];
@@ -978,7 +978,7 @@ static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
 static void walk_to(struct drc_path *it, uint32_t pos)
 {
     uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d = 1u, dn = 0u;
-    uint32_t js = pos >> kk, top = pos < it->steps ? kk : 0u;
+    uint32_t js = pos >> kk, top = pos < it->head.steps ? kk : 0u;
     struct drc_pt tmp;
     js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
     if (m != 0u && pos == it->pos + 1u) {
@@ -1014,8 +1014,8 @@ static void walk_to(struct drc_path *it, uint32_t pos)
  * circle): alpha = q0 cos(u_j/2), b = sin(u_j/2) (canal.h). */
 static void label(const struct drc_path *it, uint32_t j, cp_real *a, cp_real *b)
 {
-    const struct toolpath_cfg *rc = it->rc;
-    cp_real cs, du = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : ZERO;
+    const struct raster_cfg *rc = it->rc;
+    cp_real cs, du = it->head.n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->head.n - 1u) : ZERO;
     cp_sincos(HALF * (rc->u0 + (cp_real)j * du), b, &cs);
     *a = it->q0 * cs;
 }
@@ -1131,19 +1131,19 @@ static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_re
  * the leaf walked into the point; at a line's first point and on the links (the end
  * circles) the end leaf's, kend[], recorded by the forward walks. */
 static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
-                                struct toolpath_pt *pt)
+                                struct raster_pt *pt)
 {
-    const struct toolpath_cfg *rc = it->rc;
+    const struct raster_cfg *rc = it->rc;
     struct canal_frame f;
     struct canal_point cp;
     /* the radius offset: 0 for OUT_SURFACE, else tool_r; EDGE mode (the only user) has
      * tool_r == 0 exactly with OUT_SURFACE (init), and + ZERO turns a -0 into +0 */
     cp_real h, b, den, off = rc->tool_r + ZERO;
     pt->line = -1;
-    pt->index = (uint16_t)(r - it->steps);
+    pt->index = (uint16_t)(r - it->head.steps);
     pt->t = (jl & 1u) ? ZERO : ONE;
-    if (r > it->steps) {
-        (void)link_at(it, jl, (cp_real)(r - it->steps) / (cp_real)(it->link + 1u), &f, &h, &b);
+    if (r > it->head.steps) {
+        (void)link_at(it, jl, (cp_real)(r - it->head.steps) / (cp_real)(it->head.link + 1u), &f, &h, &b);
     } else {
         if (it->line != (int32_t)jl || it->pos > r) {
             line_start(it, jl);
@@ -1154,14 +1154,14 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
         while (it->pos < r) {
             line_step(it);
         }
-        if (!it->dir && r == it->steps) {
+        if (!it->dir && r == it->head.steps) {
             it->lam_tot = it->lam; /* a forward line's sum: backward lines start here */
         }
         pt->line = (int16_t)jl;
-        pt->index = (uint16_t)(it->dir ? it->steps - r : r);
+        pt->index = (uint16_t)(it->dir ? it->head.steps - r : r);
         pt->p = it->cur.p;
         pt->n = it->cur.t;
-        pt->t = (cp_real)r / (cp_real)it->steps;
+        pt->t = (cp_real)r / (cp_real)it->head.steps;
         if (!it->edge) {
             return CP_OK;
         }
@@ -1179,7 +1179,7 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     canal_point(&f, h, b, off, &cp);
     pt->p = cp.m;
     pt->n = cp.n;
-    if (rc->output == TOOLPATH_OUT_TIP) {
+    if (rc->output == RASTER_OUT_TIP) {
         pt->p.z -= off;
     }
     den = DRC_CUSP_EPS * (f.q2 * b * b + h * h);
@@ -1190,7 +1190,7 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
 }
 
 /* 1 if the point's position is finite (x - x is NaN for NaN and Inf). */
-static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
+static CP_NOINLINE int pt_finite(const struct raster_pt *pt)
 {
     cp_real x = pt->p.x + pt->p.y + pt->p.z;
     return x - x == ZERO;
@@ -1205,7 +1205,7 @@ static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
 static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint32_t hi,
                             cp_real *sag)
 {
-    struct toolpath_pt pt;
+    struct raster_pt pt;
     struct cp_vec3 q0, q1, u, v;
     cp_real x;
     uint32_t jl, r;
@@ -1220,7 +1220,7 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint3
             if (!pt_finite(&pt)) {
                 return CP_ERR_NUMERIC;
             }
-            if (r >= 2u && r <= it->steps) { /* distance of q1 from the chord q0 pt.p */
+            if (r >= 2u && r <= it->head.steps) { /* distance of q1 from the chord q0 pt.p */
                 sub3(&pt.p, &q0, &u);
                 sub3(&q1, &q0, &v);
                 x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
@@ -1239,178 +1239,205 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint3
     return CP_OK;
 }
 
-int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct toolpath_cfg *rc)
+/* drc_path_init, step 1: the checks that need no geometry, in the order of drc.h (g and
+ * edge, raster_check, passes, the radius parameters: a non-finite sum is one
+ * CP_ERR_NONFINITE, huge finite values that overflow included; the EDGE extras), and the
+ * radius law in the power basis (COS kept as b, c, k) into it->rp. */
+static int init_checks(struct drc_path *it, const struct drc_cfg *g, const struct raster_cfg *rc)
 {
-    uint32_t kk, i, e;
-    cp_real sag = ZERO, *c = it->rp, t, x;
-    int err, au;
-    it->count = 0;
-    it->k = 0;
-    it->line = -1;
-    it->g = g;
-    it->rc = rc;
+    cp_real *c = it->rp, x;
+    uint32_t i;
+    int err;
     if (g == NULL || g->edge > 1u) {
         return CP_ERR_INVAL;
     }
     /* the raster, checked as for every model (raster_check; in CURVE mode too, although
-     * it uses only tol), then the radius parameters: a non-finite sum is one
-     * CP_ERR_NONFINITE (huge finite values that overflow included) */
+     * it uses only tol) */
     err = raster_check(rc, CP_PI);
     if (err != CP_OK) {
         return err;
     }
-    t = rc->tol;
-    au = g->passes == DRC_PASSES_AUTO;
-    if (!au && g->passes > CP_MAX_PASSES) {
+    if (g->passes != DRC_PASSES_AUTO && g->passes > CP_MAX_PASSES) {
         return CP_ERR_TOO_MANY;
     }
-    x = rc->surf.rp[0] + rc->surf.rp[1] + rc->surf.rp[2] + rc->surf.rp[3];
-    if (!(x - x == ZERO)) { /* NaN for NaN and Inf */
+    /* (the sum is checked in CURVE mode too, the parameters are used in EDGE mode only) */
+    x = g->rp[0] + g->rp[1] + g->rp[2] + g->rp[3];
+    if (!cp_finite(x)) {
         return CP_ERR_NONFINITE;
     }
-    if (au && t == ZERO) { /* AUTO needs the tolerance (raster_check: 0 or in [1e-5, 10]) */
+    /* AUTO needs the tolerance (raster_check: 0 or in [1e-5, 10]) */
+    if (g->passes == DRC_PASSES_AUTO && rc->tol == ZERO) {
         return CP_ERR_RANGE;
     }
-    it->edge = g->edge;
-    it->n = 1u;
-    it->link = 0u;
-    it->s_tot = ONE;
-    it->lam_tot = ZERO;
-    it->kend[0] = ZERO;
-    it->kend[1] = ZERO;
-    it->q0 = ONE;
     for (i = 0; i < 4u; i++) {
-        c[i] = rc->surf.rp[i];
-        if (it->edge && cp_fabs(c[i]) > CANAL_COORD_MAX) {
+        c[i] = g->rp[i];
+        if (g->edge && cp_fabs(c[i]) > CANAL_COORD_MAX) {
             return CP_ERR_RADIUS;
         }
     }
-    if (it->edge) {
-        /* EDGE extras: angle labels, LINES, a canal radius law, and a tool radius exactly
-         * with a tool output (raster_check: none with OUT_SURFACE) */
-        if (rc->labels != TOOLPATH_LABEL_ANGLE || rc->mode != TOOLPATH_LINES ||
-            rc->surf.radius > CANAL_R_CUBIC ||
-            (rc->output != TOOLPATH_OUT_SURFACE && rc->tool_r == ZERO)) {
-            return CP_ERR_INVAL;
-        }
-        it->n = rc->n;
-        if (rc->surf.radius != CANAL_R_COS) { /* the power basis of R(sigma) */
-            if (rc->surf.radius == CANAL_R_CUBIC) {
-                x = c[1] - c[2];
-                c[3] += CP_R(3.0) * x - c[0];
-                c[2] = CP_R(3.0) * (c[0] - c[1] - x);
-                c[1] = CP_R(3.0) * (c[1] - c[0]);
-            } else {
-                c[1] = rc->surf.radius == CANAL_R_LINEAR ? c[1] - c[0] : ZERO;
-                c[2] = ZERO;
-                c[3] = ZERO;
-            }
-        }
+    if (!g->edge) {
+        return CP_OK;
     }
-    err = tangents_planar(g->p, 1u, it->tan, 1u, g->n);
-    if (err != CP_OK) {
-        return err;
+    /* EDGE extras: angle labels, LINES, a canal radius law, and a tool radius exactly
+     * with a tool output (raster_check: none with OUT_SURFACE) */
+    if (rc->labels != RASTER_LABEL_ANGLE || rc->mode != RASTER_LINES ||
+        g->radius > CANAL_R_CUBIC || (rc->output != RASTER_OUT_SURFACE && rc->tool_r == ZERO)) {
+        return CP_ERR_INVAL;
     }
-    it->nseg = (uint8_t)(g->n - 1u);
-    e = it->edge;
-    /* AUTO: K = 1, 2, ... until the sagitta fits (CP_ERR_TOL when even CP_MAX_PASSES
-     * does not); else the one K (g->passes is at most CP_MAX_PASSES here, and that
-     * iteration ends the loop) */
+    if (g->radius == CANAL_R_CUBIC) { /* Bernstein -> power basis */
+        x = c[1] - c[2];
+        c[3] += CP_R(3.0) * x - c[0];
+        c[2] = CP_R(3.0) * (c[0] - c[1] - x);
+        c[1] = CP_R(3.0) * (c[1] - c[0]);
+    } else if (g->radius != CANAL_R_COS) { /* CONST, LINEAR */
+        c[1] = g->radius == CANAL_R_LINEAR ? c[1] - c[0] : ZERO;
+        c[2] = ZERO;
+        c[3] = ZERO;
+    }
+    return CP_OK;
+}
+
+/* drc_path_init, step 3: the passes K. AUTO: K = 1, 2, ... until the sagitta fits
+ * (CP_ERR_TOL when even CP_MAX_PASSES does not); else the one K (g->passes is at most
+ * CP_MAX_PASSES here, and that iteration ends the loop). Each K walks the curve (its
+ * sagitta, the arc length that scales sigma) and in EDGE mode every line (R, tool, cusp,
+ * sagitta; Lambda on the way). */
+static int init_passes(struct drc_path *it, const struct drc_cfg *g, cp_real tol)
+{
+    uint32_t kk;
+    uint8_t edge = it->edge;
+    int au = g->passes == DRC_PASSES_AUTO, err;
     for (kk = au ? 1u : g->passes; kk <= CP_MAX_PASSES; kk++) {
+        cp_real sag = ZERO;
 #if ((CP_MAX_DRC_POINTS - 1) << CP_MAX_PASSES) > CP_MAX_STEPS /* (else it cannot fail) */
         if (((uint32_t)it->nseg << kk) > CP_MAX_STEPS) {
             return au ? CP_ERR_TOL : CP_ERR_TOO_MANY;
         }
 #endif
         it->passes = (uint8_t)kk;
-        it->steps = (uint16_t)(it->nseg << kk);
-        sag = ZERO;
+        it->head.steps = (uint16_t)(it->nseg << kk);
         /* the curve itself: its sagitta, and the arc length (sigma's scale) */
         it->edge = 0u;
-        err = walk(it, 1u, 0u, it->steps, &sag);
+        err = walk(it, 1u, 0u, it->head.steps, &sag);
         it->s_tot = it->s;
         it->kend[1] = it->kap; /* the last leaf's curvature (P_{N-1} end circle) */
-        it->edge = (uint8_t)e;
-        if (err == CP_OK && e) { /* every line (R, tool, cusp, sagitta): Lambda on the way */
+        it->edge = edge;
+        if (err == CP_OK && edge) {
             cp_real r[3];
             rlaw(it, ZERO, r);
             it->q0 = cp_sqrt(ONE + r[1] * r[1]);
-            err = walk(it, it->n, 0u, it->steps, &sag);
+            err = walk(it, it->head.n, 0u, it->head.steps, &sag);
         }
         if (err != CP_OK) {
             return err;
         }
-        if (!au || sag <= DRC_SAG_MARGIN * t) {
-            break;
+        if (!au || sag <= DRC_SAG_MARGIN * tol) {
+            return CP_OK;
         }
     }
-    if (kk > CP_MAX_PASSES) {
+    return CP_ERR_TOL;
+}
+
+/* drc_path_init, step 4 (EDGE mode): the link points, uniform angle steps on the end
+ * circle (radius (R - off)/q), so the chord tolerance fixes them: step 4 x sqrt(tol /
+ * 2 rad) DRC_SAG_MARGIN (x <= asin x: the sagitta of that step is <= 0.81 tol); then
+ * every link point is checked (regularity, finite). */
+static int init_links(struct drc_path *it, const struct raster_cfg *rc)
+{
+    cp_real worst = ONE, h, b, x, t = rc->tol, sag = ZERO;
+    struct canal_frame f;
+    uint32_t i;
+    for (i = 0; i + 1u < it->head.n; i++) {
+        x = link_at(it, i, ZERO, &f, &h, &b);
+        h = (f.r - rc->tool_r) / cp_sqrt(f.q2); /* (R - off)/q, off as point_at's */
+        if (h > t && t > ZERO) {
+            x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
+            worst = x > worst ? x : worst;
+        }
+    }
+    if (!(worst - ONE <= (cp_real)CP_MAX_LINK)) {
         return CP_ERR_TOL;
     }
-    if (e) {
-        /* link points: uniform angle steps on the end circle (radius (R - off)/q), so
-         * the chord tolerance fixes them: step 4 x sqrt(tol / 2 rad) DRC_SAG_MARGIN
-         * (x <= asin x: the sagitta of that step is <= 0.81 tol); then every link point
-         * is checked (regularity) */
-        cp_real worst = ONE, h, b;
-        struct canal_frame f;
-        for (i = 0; i + 1u < it->n; i++) {
-            x = link_at(it, i, ZERO, &f, &h, &b);
-            h = (f.r - rc->tool_r) / cp_sqrt(f.q2); /* (R - off)/q, off as point_at's */
-            if (h > t && t > ZERO) {
-                x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
-                worst = x > worst ? x : worst;
-            }
-        }
-        if (!(worst - ONE <= (cp_real)CP_MAX_LINK)) {
-            return CP_ERR_TOL;
-        }
-        it->link = rc->link != TOOLPATH_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
-        err = walk(it, it->n - 1u, it->steps + 1u, (uint32_t)it->steps + it->link, &sag);
-        if (err != CP_OK) {
-            return err;
-        }
+    it->head.link = rc->link != RASTER_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
+    return walk(it, it->head.n - 1u, it->head.steps + 1u,
+                (uint32_t)it->head.steps + it->head.link, &sag);
+}
+
+int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct raster_cfg *rc)
+{
+    int err;
+    it->head.count = 0;
+    it->head.k = 0;
+    it->line = -1;
+    it->g = g;
+    it->rc = rc;
+    /* step 1: the checks without geometry, the radius law */
+    err = init_checks(it, g, rc);
+    if (err != CP_OK) {
+        return err;
     }
-    it->mode = TOOLPATH_LINES;
-    it->count = raster_count(it->n, it->steps, it->link);
+    it->edge = g->edge;
+    it->head.n = it->edge ? rc->n : 1u;
+    it->head.link = 0u;
+    it->s_tot = ONE;
+    it->lam_tot = ZERO;
+    it->kend[0] = ZERO;
+    it->kend[1] = ZERO;
+    it->q0 = ONE;
+    /* step 2: the points and their tangents */
+    err = tangents_planar(g->p, 1u, it->tan, 1u, g->n);
+    if (err != CP_OK) {
+        return err;
+    }
+    it->nseg = (uint8_t)(g->n - 1u);
+    /* step 3: the passes (every line walked); step 4: the links (every link walked) */
+    err = init_passes(it, g, rc->tol);
+    if (err == CP_OK && it->edge) {
+        err = init_links(it, rc);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    it->head.mode = RASTER_LINES;
+    it->head.count = raster_count(it->head.n, it->head.steps, it->head.link);
     it->line = -1;
     return CP_OK;
 }
 
 uint32_t drc_path_count(const struct drc_path *it)
 {
-    return it->count;
+    return it->head.count;
 }
 
 int drc_path_seek(struct drc_path *it, uint32_t k)
 {
     it->line = -1; /* next() re-positions (descent or re-walk of the line) */
-    return raster_seek(&it->k, it->count, k);
+    return raster_seek(&it->head, k);
 }
 
-int drc_path_next(struct drc_path *it, struct toolpath_pt *pt)
+int drc_path_next(struct drc_path *it, struct raster_pt *pt)
 {
-    uint32_t block = (uint32_t)it->steps + 1u + it->link;
-    struct toolpath_pt q;
-    if (it->k >= it->count) {
+    uint32_t block = (uint32_t)it->head.steps + 1u + it->head.link;
+    struct raster_pt q;
+    if (it->head.k >= it->head.count) {
         return CP_ERR_DONE;
     }
-    (void)point_at(it, it->k / block, it->k % block, &q);
+    (void)point_at(it, it->head.k / block, it->head.k % block, &q);
     /* as the other models: a non-finite point is not written, k unchanged (n is
      * finite with p: EDGE p = C + (R - off) n, CURVE p and t from the same angles) */
     if (!pt_finite(&q)) {
         return CP_ERR_NUMERIC;
     }
     *pt = q;
-    it->k++;
+    it->head.k++;
     return CP_OK;
 }
 
 #if CP_REAL_DOUBLE
-CP_STATIC_ASSERT(sizeof(struct drc_path) <= 2u * 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 2u * 480u, drc_path_fits);
 CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 2u * 320u, drc_cfg_fits);
 #else
-CP_STATIC_ASSERT(sizeof(struct drc_path) <= 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 480u, drc_path_fits);
 CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 320u, drc_cfg_fits);
 #endif
 CP_STATIC_ASSERT(sizeof(struct drc_pt) == 2u * sizeof(struct cp_vec3), drc_pt_packed);

@@ -575,10 +575,10 @@ static CP_NOINLINE cp_real sigma_of(const struct gsr_path *it, cp_real th)
 /* Fixed coordinate of line j (LINES: sig of theta_j, CIRCLES: u = j (link + 1) / gsteps). */
 static cp_real fixed(const struct gsr_path *it, uint32_t j)
 {
-    uint32_t lk = (uint32_t)it->link + 1u;
-    return it->mode == TOOLPATH_LINES
+    uint32_t lk = (uint32_t)it->head.link + 1u;
+    return it->head.mode == RASTER_LINES
                ? sigma_of(it, it->v0 + (cp_real)j * it->dv)
-               : (cp_real)(j * lk) / (cp_real)(it->n > 1u ? (uint32_t)(it->n - 1u) * lk : 1u);
+               : (cp_real)(j * lk) / (cp_real)(it->head.n > 1u ? (uint32_t)(it->head.n - 1u) * lk : 1u);
 }
 
 /* Where point k is: x[0] = u, x[1] = the section parameter sig; line (-1 on a link) and
@@ -588,15 +588,15 @@ static cp_real fixed(const struct gsr_path *it, uint32_t j)
  * running end where line j stopped. */
 static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct raster_at *at)
 {
-    uint32_t c = it->mode == TOOLPATH_LINES;
+    uint32_t c = it->head.mode == RASTER_LINES;
     cp_real a0 = it->s0, a1 = it->s1, f;
-    raster_locate(k, it->steps, it->link, at);
+    raster_locate(k, it->head.steps, it->head.link, at);
     f = fixed(it, at->j);
     if (at->a != 0u) { /* link point a */
-        f += (fixed(it, at->j + 1u) - f) * ((cp_real)at->a / (cp_real)(it->link + 1u));
+        f += (fixed(it, at->j + 1u) - f) * ((cp_real)at->a / (cp_real)(it->head.link + 1u));
     }
     x[c] = f;
-    x[1u - c] = a0 + (a1 - a0) * ((cp_real)at->i / (cp_real)it->steps);
+    x[1u - c] = a0 + (a1 - a0) * ((cp_real)at->i / (cp_real)it->head.steps);
 }
 
 /* Emitted point at x = (u, sig) (surface, tool centre G + r n, or tip) and normal, with
@@ -605,7 +605,7 @@ static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct ras
  * (bit equality: both are the same computation whenever they are equal; gsr_path_seek
  * resets the keys), so a ring costs one section and then only its unit
  * points, and a line one unit point. */
-static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
+static int pt_at(struct gsr_path *it, const cp_real *x, struct raster_pt *pt)
 {
     const struct gsr_sec *s = &it->sec;
     cp_real g, ax, by, r;
@@ -628,7 +628,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
     r = it->tool_r;
     point(s, it->cc[0], it->cc[1], ax, by, &pt->p, &pt->n);
     comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
-    if (it->output == TOOLPATH_OUT_TIP) {
+    if (it->output == RASTER_OUT_TIP) {
         pt->p.z -= r;
     }
     g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
@@ -644,7 +644,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
  * before the loop. */
 static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
 {
-    struct toolpath_pt a, b, m;
+    struct raster_pt a, b, m;
     cp_real x[2], px[2] = {CP_R(0.0), CP_R(0.0)};
     struct raster_at at;
     int32_t pline = -1;
@@ -652,7 +652,7 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
     int err = gsr_path_seek(it, 0u);
     sag[0] = sag[1] = CP_R(0.0);
     a.p = zero;
-    for (k = 0; k < it->count && err == CP_OK; k++) {
+    for (k = 0; k < it->head.count && err == CP_OK; k++) {
         locate(it, k, x, &at);
         err = pt_at(it, x, &b);
         if (err == CP_OK && k > 0u) {
@@ -679,7 +679,7 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
 static const struct raster_rule gsr_rule = {SAG_MARGIN, SAG_MARGIN, 8u, 0u, 31u, 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
-int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct toolpath_cfg *rc)
+int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)
 {
     struct raster_fit fit;
     cp_real sag[2];
@@ -687,7 +687,7 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
     if (it == NULL) {
         return CP_ERR_INVAL;
     }
-    it->count = 0;
+    it->head.count = 0;
     err = gsr_init(&it->g, geom);
     if (err == CP_OK) {
         err = raster_check(rc, CP_PI);
@@ -698,31 +698,31 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
     if (err != CP_OK) {
         return err;
     }
-    it->mode = rc->mode;
+    it->head.mode = rc->mode;
     it->output = rc->output;
-    it->n = rc->n;
+    it->head.n = rc->n;
     it->tool_r = rc->tool_r;
     it->v0 = rc->u0;
-    it->dv = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : CP_R(0.0);
+    it->dv = it->head.n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->head.n - 1u) : CP_R(0.0);
     it->s0 = CP_R(0.0); /* LINES: u runs from 0 to 1 */
     it->s1 = CP_R(1.0);
-    if (it->mode == TOOLPATH_CIRCLES) {
+    if (it->head.mode == RASTER_CIRCLES) {
         it->s0 = sigma_of(it, rc->u0);
         it->s1 = sigma_of(it, rc->u1);
     }
     raster_fit_begin(&fit, rc, &gsr_rule);
     err = RASTER_FIT_MORE;
     for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
-        it->steps = (uint16_t)fit.m[0];
-        it->link = (uint16_t)(fit.m[1] - 1u);
-        it->count = raster_count(it->n, fit.m[0], fit.m[1] - 1u);
+        it->head.steps = (uint16_t)fit.m[0];
+        it->head.link = (uint16_t)(fit.m[1] - 1u);
+        it->head.count = raster_count(it->head.n, fit.m[0], fit.m[1] - 1u);
         err = walk(it, sag);
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
     }
     if (err != CP_OK) {
-        it->count = 0;
+        it->head.count = 0;
     }
     /* CP_OK: the last walk (its gsr_path_seek(it, 0)) left k = 0, and the caches it
      * filled are keyed by u and sig, so they stay valid (no second seek) */
@@ -731,37 +731,37 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
 
 uint32_t gsr_path_count(const struct gsr_path *it)
 {
-    return it->count;
+    return it->head.count;
 }
 
 CP_NOINLINE int gsr_path_seek(struct gsr_path *it, uint32_t k)
 {
     it->su = CP_R(-1.0); /* u >= 0: no section cached */
     it->cs = CP_R(8.0);  /* |sig| <= 4: no unit point cached */
-    return raster_seek(&it->k, it->count, k);
+    return raster_seek(&it->head, k);
 }
 
-int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt)
+int gsr_path_next(struct gsr_path *it, struct raster_pt *pt)
 {
     cp_real x[2];
     struct raster_at at;
     int err;
-    if (it->k >= it->count) {
+    if (it->head.k >= it->head.count) {
         return CP_ERR_DONE;
     }
-    locate(it, it->k, x, &at);
+    locate(it, it->head.k, x, &at);
     err = pt_at(it, x, pt);
     pt->t = x[0];
     pt->line = (int16_t)at.line;
     pt->index = (uint16_t)at.index;
-    it->k += err == CP_OK;
+    it->head.k += err == CP_OK;
     return err;
 }
 
 #if CP_REAL_DOUBLE
-CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 800u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 896u, gsr_path_fits_budget);
 CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 640u, gsr_cfg_fits_budget);
 #else
-CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 400u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 448u, gsr_path_fits_budget);
 CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 320u, gsr_cfg_fits_budget);
 #endif
