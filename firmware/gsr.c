@@ -49,15 +49,6 @@
 #define TAN_PI_8 CP_R(0.41421356237309504880)
 #define SAG_MARGIN CP_R(0.9)
 
-/* gsr_init checks c, r and ref as GSR_NUMS consecutive reals, the vector helpers read
- * any struct cp_vec3 as 3 reals */
-#define GSR_NUMS (6u * GSR_FN + 3u)
-CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
-/* sec_eval has centre_jet write the 4 vectors of the jet into s->c, t, n, b */
-CP_STATIC_ASSERT(offsetof(struct gsr_sec, b) - offsetof(struct gsr_sec, c) ==
-                     3u * sizeof(struct cp_vec3), gsr_sec_jet_contiguous);
-CP_STATIC_ASSERT(offsetof(struct gsr_cfg, ref) - offsetof(struct gsr_cfg, c) ==
-                     (GSR_NUMS - 3u) * sizeof(cp_real), gsr_cfg_reals_contiguous);
 
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
@@ -182,7 +173,8 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
 {
     const struct gsr_cfg *cf = g->cfg;
     const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
-    struct cp_vec3 d2;
+    struct cp_vec3 jet[4]; /* C, C', C'', C''' (centre_jet) */
+    const struct cp_vec3 *d2 = &jet[2], *d3 = &jet[3];
     struct pframe pf;
     cp_real f[4][3], sp, s2, q, w, ty, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
@@ -196,23 +188,22 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     s->dfn = f[1][0];
     s->dfb = f[1][1];
     s->ft = f[0][2];
-    /* the centre jet C, C', C'', C''' straight into s->c, t, n, b (n and b hold C'' and
-     * C''' until the frame overwrites them: C'' is kept in d2, C''' read by proj first) */
-    centre_jet(g, f[0][2], &s->c);
-    d2 = s->n;
+    centre_jet(g, f[0][2], jet);
+    s->c = jet[0];
+    s->t = jet[1];
     ty = s->t.y;
     s2 = dot(&s->t, &s->t);
     sp = unit(&s->t);
     s->ts = f[1][2] * sp;
     if (g->frame == GSR_FRAME_FRENET) {
-        ax = &d2;
-        ad = &s->b;
+        ax = d2;
+        ad = d3;
     } else if (g->frame == GSR_FRAME_FIXED) {
         ax = &ey;
         cs[0] = CP_R(0.0);
         cs[1] = CP_R(-1.0);
     }
-    q = proj(ax, ad, &s->t, &d2, sp, &pf);
+    q = proj(ax, ad, &s->t, d2, sp, &pf);
     if (g->frame == GSR_FRAME_RMF) {
         cp_sincos(rmf_phi(g, f[0][2]), &cs[1], &cs[0]);
         pf.w = CP_R(0.0);
@@ -220,8 +211,8 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
     cross(&s->t, &s->n, &s->b);
     s->tw = s->ts * pf.w;
-    s->k1 = dot(&d2, &s->n) / s2;
-    s->k2 = dot(&d2, &s->b) / s2;
+    s->k1 = dot(d2, &s->n) / s2;
+    s->k2 = dot(d2, &s->b) / s2;
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
     if (g->frame == GSR_FRAME_FIXED && ty != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
@@ -286,11 +277,32 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     return worst;
 }
 
+/* A number of the geometry: CP_ERR_NONFINITE (NaN, Inf), CP_ERR_RANGE (|x| > max), else
+ * CP_OK. */
+static int check_num(cp_real x, cp_real max)
+{
+    if (!fin(x)) {
+        return CP_ERR_NONFINITE;
+    }
+    return cp_fabs(x) <= max ? CP_OK : CP_ERR_RANGE;
+}
+
+/* The 3 functions fn[0..2] of GSR_FN numbers each (|w| <= GSR_W_MAX, every other
+ * |number| <= GSR_COEF_MAX), in order: the first failing number's code, else CP_OK. */
+static int check_fns(const cp_real (*fn)[GSR_FN])
+{
+    uint32_t i, k;
+    int err = CP_OK;
+    for (i = 0; i < 3u && err == CP_OK; i++) {
+        for (k = 0; k < GSR_FN && err == CP_OK; k++) {
+            err = check_num(fn[i][k], k == GSR_W ? GSR_W_MAX : GSR_COEF_MAX);
+        }
+    }
+    return err;
+}
+
 int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
 {
-    /* the GSR_NUMS = 45 reals c[3][7], r[3][7], ref (contiguous: the asserts above) */
-    const cp_real *f =
-        (const cp_real *)(const void *)((const char *)cf + offsetof(struct gsr_cfg, c));
     cp_real a[4u * 3u]; /* sfun's output (stride 3): f_t(0), f_t(1) */
     cp_real worst = CP_R(0.0), d1 = CP_R(0.0), rmax = CP_R(0.0);
     struct gsr_sec s;
@@ -304,17 +316,26 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
     g->cfg = cf;
     g->frame = cf->frame;
     g->section = cf->section;
-    for (k = 0; k < GSR_NUMS; k++) {
-        /* the 7 functions (|w| <= GSR_W_MAX), then ref (k % 7 < GSR_W) */
-        if (!fin(f[k])) {
-            return CP_ERR_NONFINITE;
-        }
-        if (!(cp_fabs(f[k]) <= (k % GSR_FN == GSR_W ? GSR_W_MAX : GSR_COEF_MAX))) {
-            return CP_ERR_RANGE;
-        }
-        if (k < 3u * GSR_FN) { /* the centre's numbers, converted below */
-            g->cp[k] = f[k];
-        }
+    /* every number in order: the centre's, the sections', ref (the first failing one
+     * gives the code) */
+    err = check_fns(cf->c);
+    if (err == CP_OK) {
+        err = check_fns(cf->r);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.x, GSR_COEF_MAX);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.y, GSR_COEF_MAX);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.z, GSR_COEF_MAX);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    for (k = 0; k < 3u * GSR_FN; k++) { /* the centre's numbers, converted below */
+        g->cp[k] = cf->c[k / GSR_FN][k % GSR_FN];
     }
     for (k = 0; k < 3u; k++) {
         /* the centre in the power basis (a Bezier is converted: the cubic family with
