@@ -12,7 +12,7 @@
 #ifndef FRENET_H
 #define FRENET_H
 
-#include "cp_types.h"
+#include "cp_math.h"
 
 struct frenet {
     cp_real cx, cy, r, b, c, k; /* ARC and COS-law parameters */

@@ -191,7 +191,7 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
             }
             c->rp[i - 8u] = v;
         }
-        if (!cp_isfinite(v)) {
+        if (!cp_finite(v)) {
             return CP_ERR_NONFINITE;
         }
         if (cp_fabs(v) > lim) {

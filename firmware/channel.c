@@ -125,11 +125,6 @@ cp_real channel_kj(cp_real n)
 /* ---------------------------------------------------------------------------------------
  * Small helpers. fin, dot, cross, sub and norm forward to the shared ones of cp_math.h
  * (one copy in the image; the same operations in the same order). */
-static int fin(cp_real x)
-{
-    return cp_finite(x);
-}
-
 /* Vectors (3 reals). */
 static cp_real dot(const cp_real *a, const cp_real *b)
 {
@@ -400,7 +395,7 @@ int channel_section_check(const struct channel_section *s)
     const cp_real *v = CVR(s);
     unsigned i;
     for (i = 0; i < 12u; i++) {
-        if (!fin(v[i])) {
+        if (!cp_finite(v[i])) {
             return CP_ERR_NONFINITE;
         }
         if (i >= 3u && cp_fabs(v[i]) > CHANNEL_COORD_MAX) {
@@ -707,7 +702,7 @@ static int at(struct channel_path *cp, uint32_t k, struct raster_pt *pt, struct 
     for (c = 0; c < 6u; c++) { /* p then n: 6 consecutive reals (static assert below) */
         g2 += p[c];
     }
-    if (!fin(g2)) {
+    if (!cp_finite(g2)) {
         return CP_ERR_NUMERIC;
     }
     return g > CP_R(0.0) ? CP_OK : CP_ERR_FOLD;

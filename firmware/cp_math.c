@@ -208,8 +208,8 @@ cp_real cp_log(cp_real x)
     if (!(x > 0.0f)) {
         return (x - x) / (x - x); /* NaN for x <= 0 and for NaN */
     }
-    if (x - x != x - x) {
-        return x; /* +inf */
+    if (!cp_finite(x)) {
+        return x; /* +inf (x > 0 here) */
     }
     if (x < 1.17549435e-38f) {
         x *= 33554432.0f; /* 2^25: subnormal to normal, exact */

@@ -206,8 +206,8 @@ inline cp_real cp_v3_unit(cp_real *v)
     return l;
 }
 
-/* 1 if x is finite: x - x is 0, and NaN for an infinity or a NaN (cp_isfinite's
- * answer in one comparison). */
+/* 1 if x is finite, 0 for an infinity or a NaN: x - x is 0 exactly for a finite x (NaN
+ * otherwise), one comparison, no libm. The one finite test of the firmware. */
 inline int cp_finite(cp_real x)
 {
     return x - x == CP_R(0.0);

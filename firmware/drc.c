@@ -230,8 +230,7 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
         const cp_real *v = CV3(&p[i * ps]);
         for (k = 0; k < 3u; k++) {
             if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
-                /* x - x is 0 for finite x, NaN for NaN and Inf */
-                return v[k] - v[k] == ZERO ? CP_ERR_RANGE : CP_ERR_NONFINITE;
+                return cp_finite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
             }
             lo[k] = v[k] < lo[k] ? v[k] : lo[k];
             hi[k] = v[k] > hi[k] ? v[k] : hi[k];
@@ -974,13 +973,18 @@ static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
  * the ends swapped back into curve order. The depth-0 interval is the original segment:
  * its far end is loaded into stk[0] when level 1 is (re)built (there it stays stk[0], or
  * the level-1 midpoint replaces it). pos == steps is the line's last original point: no
- * levels (js = N - 1 forward, or 0 by the unsigned wrap of N - 2 - (N - 1) + 1 backward). */
+ * levels (its segment js = N - 1 is past the last; the point is P_{N-1} forward, P_0
+ * backward). */
 static void walk_to(struct drc_path *it, uint32_t pos)
 {
     uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d = 1u, dn = 0u;
     uint32_t js = pos >> kk, top = pos < it->head.steps ? kk : 0u;
+    /* the original points at the ends of segment js (travel order, js <= nseg): p0 where
+     * travel enters it (curve index js forward, nseg - js backward), p1 = p0 + 1 or
+     * p0 - 1 where it leaves (read only with a level, pos < steps: then js < nseg, so
+     * p0 >= 1 backward) */
+    uint32_t p0 = it->dir ? it->nseg - js : js;
     struct drc_pt tmp;
-    js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
     if (m != 0u && pos == it->pos + 1u) {
         tmp = it->stk[kk - 1u]; /* the point at pos: the old leaf's far end */
         dn = kk;                /* depth of node pos: K - ctz(m); m has a set bit below K */
@@ -990,12 +994,12 @@ static void walk_to(struct drc_path *it, uint32_t pos)
         }
         d = dn;
     } else {
-        orig(it, js + it->dir, &it->cur);
+        orig(it, p0, &it->cur);
     }
     for (; d <= top; d++) {
         const struct drc_pt *pf = &it->stk[d == 1u ? 0u : d - 2u];
         if (d == 1u) {
-            orig(it, js + 1u - it->dir, &it->stk[0]);
+            orig(it, it->dir ? p0 - 1u : p0 + 1u, &it->stk[0]);
         }
         if (d != dn) {
             insert_planar(it->dir ? pf : &it->cur, it->dir ? &it->cur : pf, &tmp);
@@ -1140,9 +1144,9 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
      * tool_r == 0 exactly with OUT_SURFACE (init), and + ZERO turns a -0 into +0 */
     cp_real h, b, den, off = rc->tool_r + ZERO;
     pt->line = -1;
-    pt->index = (uint16_t)(r - it->head.steps);
     pt->t = (jl & 1u) ? ZERO : ONE;
     if (r > it->head.steps) {
+        pt->index = (uint16_t)(r - it->head.steps);
         (void)link_at(it, jl, (cp_real)(r - it->head.steps) / (cp_real)(it->head.link + 1u), &f, &h, &b);
     } else {
         if (it->line != (int32_t)jl || it->pos > r) {
@@ -1189,11 +1193,11 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     return CP_OK;
 }
 
-/* 1 if the point's position is finite (x - x is NaN for NaN and Inf). */
+/* 1 if the point's position is finite (finite coordinates, |p| <= ~1e5 mm, cannot
+ * overflow the sum; a NaN or Inf makes it non-finite). */
 static CP_NOINLINE int pt_finite(const struct raster_pt *pt)
 {
-    cp_real x = pt->p.x + pt->p.y + pt->p.z;
-    return x - x == ZERO;
+    return cp_finite(pt->p.x + pt->p.y + pt->p.z);
 }
 
 /* Walk the points r = lo..hi of blocks 0..nb-1 (the curve: 1; the lines: n; the links:

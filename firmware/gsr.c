@@ -84,12 +84,6 @@ static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real 
 #define GSR_ROLLED
 #endif
 
-/* cp_finite out of line: one copy for the checks of init, sections and points. */
-static CP_NOINLINE int fin(cp_real x)
-{
-    return cp_finite(x);
-}
-
 /* Normalize v (each component times 1/|v|); returns its former length. */
 static cp_real unit(struct cp_vec3 *v)
 {
@@ -224,7 +218,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         err = CP_ERR_DEGENERATE;
     } else if (!(q > GSR_EPS * GSR_EPS)) {
         err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
-    } else if (!fin(dot(&s->c, &s->n) + s->tw + w)) {
+    } else if (!cp_finite(dot(&s->c, &s->n) + s->tw + w)) {
         /* C.N is finite iff C and N are (|C| <= ~1e5 mm from the coefficient limits, |N|
          * = 1: no product overflows; an Inf or NaN component makes a product Inf or NaN) */
         err = CP_ERR_NUMERIC;
@@ -270,7 +264,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
             if (i > 0u) {
                 w = cp_fabs(rmf_phi(g, tm) - pm);
                 /* NaN is sticky (w > NaN is false): a NaN error fails CP_ERR_TOL */
-                worst = (w > worst || !fin(w)) ? w : worst;
+                worst = (w > worst || !cp_finite(w)) ? w : worst;
             }
         }
     }
@@ -281,7 +275,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
  * CP_OK. */
 static int check_num(cp_real x, cp_real max)
 {
-    if (!fin(x)) {
+    if (!cp_finite(x)) {
         return CP_ERR_NONFINITE;
     }
     return cp_fabs(x) <= max ? CP_OK : CP_ERR_RANGE;
@@ -511,7 +505,7 @@ int gsr_arclen_init(struct gsr_arclen *t, cp_real fn, cp_real fb)
     if (t == NULL) {
         return CP_ERR_INVAL;
     }
-    if (!cp_isfinite(fn) || !cp_isfinite(fb)) {
+    if (!cp_finite(fn) || !cp_finite(fb)) {
         return CP_ERR_NONFINITE;
     }
     if (!(fn > CP_R(0.0)) || !(fb > CP_R(0.0))) {
@@ -653,7 +647,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct raster_pt *pt)
         pt->p.z -= r;
     }
     g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
-    if (err == CP_OK && !fin(dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
+    if (err == CP_OK && !cp_finite(dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
         err = CP_ERR_NUMERIC;
     }
     return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;

@@ -9,10 +9,7 @@ int raster_check(const struct raster_cfg *c, cp_real umax)
         (c->output == RASTER_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
         return CP_ERR_INVAL;
     }
-    /* x * 0 is NaN exactly when x is not finite, else +-0 (no overflow of a sum): the sum
-     * is 0 exactly when all four are finite */
-    if (!(c->u0 * CP_R(0.0) + c->u1 * CP_R(0.0) + c->tol * CP_R(0.0) + c->tool_r * CP_R(0.0) ==
-          CP_R(0.0))) {
+    if (!cp_finite(c->u0) || !cp_finite(c->u1) || !cp_finite(c->tol) || !cp_finite(c->tool_r)) {
         return CP_ERR_NONFINITE;
     }
     if (c->n == 0u || cp_fabs(c->u0) > umax || cp_fabs(c->u1) > umax ||

@@ -284,8 +284,8 @@ static int check_job(struct canal_path *tp, const char lines[8][160])
     for (k = 0; k < limit; k++) {
         double e = -1.0, t, nl;
         CHECK_EQ_INT(canal_path_next(tp, &pt), CP_OK);
-        CHECK(cp_isfinite(pt.p.x) && cp_isfinite(pt.p.y) && cp_isfinite(pt.p.z));
-        CHECK(cp_isfinite(pt.n.x) && cp_isfinite(pt.n.y) && cp_isfinite(pt.n.z));
+        CHECK(cp_finite(pt.p.x) && cp_finite(pt.p.y) && cp_finite(pt.p.z));
+        CHECK(cp_finite(pt.n.x) && cp_finite(pt.n.y) && cp_finite(pt.n.z));
         nl = sqrt((double)pt.n.x * pt.n.x + (double)pt.n.y * pt.n.y + (double)pt.n.z * pt.n.z);
         if (fabs(nl - 1.0) > st_maxn) {
             st_maxn = fabs(nl - 1.0);
