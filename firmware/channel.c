@@ -775,7 +775,9 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
  * from it aimed at SAG_MARGIN tol (up or down, at least 8 / 1), then verified with the
  * sagitta <= tol, each correction at least 1/8 larger, an estimate above the maximum
  * CP_ERR_TOL at once. */
-static const struct raster_rule channel_rule = {SAG_MARGIN, CP_R(1.0), 32u, 1u, 3u, 0u};
+static const struct raster_rule channel_rule = {.aim = SAG_MARGIN, .accept = CP_R(1.0),
+                                                .start = 32u, .pilot = 1u, .grow_shift = 3u,
+                                                .clamp = 0u};
 
 int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
                       const struct raster_cfg *rs)
