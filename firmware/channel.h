@@ -99,8 +99,8 @@ struct channel_cfg {
  * of ab/dab is the a (cos w) half, 1 the b (sin w) half. */
 struct channel_row {
     cp_real u;                  /* guide parameter, 0..N-1 */
-    cp_real l[3], t[3];         /* guide point (mm), unit tangent tau */
-    cp_real e1[3], e2[3];       /* frame: e1 = unit(e_y x tau), e2 = tau x e1 */
+    struct cp_vec3 l, t;        /* guide point (mm), unit tangent tau */
+    struct cp_vec3 e1, e2;      /* frame: e1 = unit(e_y x tau), e2 = tau x e1 */
     cp_real ab[2];              /* semi-axes a >= b at u, mm */
     cp_real dab[2];             /* a'/a, b'/b (per unit u) */
     cp_real alpha, ca, sa;      /* angle of the a axis from e1 (rad), its cos and sin */

@@ -23,38 +23,6 @@
 #define ZERO CP_R(0.0)
 #define DRC_K_INF CP_R(1.0e30) /* "unbounded" curvature of the one-zero-angle limit */
 
-/* ---- vectors: forwarded to the shared helpers of cp_math.h (one copy in the image; the
- * same operations in the same order; a struct cp_vec3 read as 3 reals) ---- */
-#define CV3(v) ((const cp_real *)(v))
-
-static cp_real dot3(const struct cp_vec3 *a, const struct cp_vec3 *b)
-{
-    return cp_v3_dot(CV3(a), CV3(b));
-}
-
-static void sub3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_sub(CV3(a), CV3(b), (cp_real *)o);
-}
-
-/* o = a x b (o may alias a or b) */
-static void cross3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_cross(CV3(a), CV3(b), (cp_real *)o);
-}
-
-/* o = sa a + sb b */
-static void comb3(cp_real sa, const struct cp_vec3 *a, cp_real sb, const struct cp_vec3 *b,
-                  struct cp_vec3 *o)
-{
-    cp_v3_comb((cp_real *)o, sa, CV3(a), sb, CV3(b));
-}
-
-static cp_real norm3(const struct cp_vec3 *a)
-{
-    return cp_v3_norm(CV3(a));
-}
-
 /* ---- the exponential segment model ---- */
 
 /* Series terms: E1 = sum_{k=0}^{S} q^k/(k+1)!, E2 = sum q^k/(k+2)! on |q| <= 1.
@@ -223,11 +191,16 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     if (n > CP_MAX_DRC_POINTS) {
         return CP_ERR_TOO_MANY;
     }
-    for (k = 0; k < 3u; k++) {
-        lo[k] = hi[k] = CV3(p)[k]; /* (a non-finite P_0 is rejected below, unused) */
-    }
+    /* the bounding box from P_0 (a non-finite P_0 is rejected below, unused) */
+    lo[0] = hi[0] = p[0].x;
+    lo[1] = hi[1] = p[0].y;
+    lo[2] = hi[2] = p[0].z;
     for (i = 0; i < n; i++) {
-        const cp_real *v = CV3(&p[i * ps]);
+        const struct cp_vec3 *q = &p[i * ps];
+        cp_real v[3];
+        v[0] = q->x;
+        v[1] = q->y;
+        v[2] = q->z;
         for (k = 0; k < 3u; k++) {
             if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
                 return cp_finite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
@@ -244,13 +217,13 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     }
     dd = cp_sqrt(dd) * DRC_COINCIDENT_REL;
     for (i = 0; i + 1u < n; i++) {
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
-        w->len[i] = norm3(&d1);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        w->len[i] = cp_v3_norm(&d1);
         if (!(w->len[i] > dd)) {
             return CP_ERR_COINCIDENT;
         }
         if (i > 0u) {
-            cp_real co = dot3(&d0, &d1);
+            cp_real co = cp_v3_dot(&d0, &d1);
             if (!(co > ZERO)) {
                 return CP_ERR_TURN;
             }
@@ -298,9 +271,9 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
     w->phi[n - 1u] = ZERO;
     if (n == 3u) {
         struct cp_vec3 ch;
-        sub3(&p[2u * ps], &p[0], &ch);
+        cp_v3_sub(&p[2u * ps], &p[0], &ch);
         cp_sincos(w->phi[1], &x, &q);
-        k = x / norm3(&ch); /* half the signed curvature of the circle */
+        k = x / cp_v3_norm(&ch); /* half the signed curvature of the circle */
         for (e = 0; e < 2u; e++) {
             x = w->len[e] * k;
             w->phi[e * (n - 1u)] = cp_atan2(x, cp_sqrt(ONE - x * x));
@@ -376,7 +349,7 @@ static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, str
         uint32_t c = i + 1u < n ? i : n - 2u;
         struct cp_vec3 d;
         cp_real l = w.len[c];
-        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
+        cp_v3_sub(&p[(c + 1u) * ps], &p[c * ps], &d);
         (void)rot_z(-tan_angle(&w, i, n), d.x / l, d.y / l, &t[i * ts]);
     }
     return CP_OK;
@@ -435,17 +408,17 @@ static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_
     }
     for (i = 1; i + 1u < n; i++) {
         cp_real cl, co;
-        sub3(&p[i * ps], &p[(i - 1u) * ps], &d0);
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
-        co = dot3(&d0, &d1);
-        cross3(&d0, &d1, &c);
-        cl = norm3(&c);
+        cp_v3_sub(&p[i * ps], &p[(i - 1u) * ps], &d0);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        co = cp_v3_dot(&d0, &d1);
+        cp_v3_cross(&d0, &d1, &c);
+        cl = cp_v3_norm(&c);
         w->phi[i] = ZERO;
         if (cl > CP_R(1e-6) * w->len[i - 1u] * w->len[i]) {
             cp_real sg = ONE;
-            comb3(ONE / cl, &c, ZERO, &c, &c);
-            if (have && dot3(&c, &t[(i - 1u) * ts]) < ZERO) {
-                comb3(-ONE, &c, ZERO, &c, &c);
+            cp_v3_comb(&c, ONE / cl, &c, ZERO, &c);
+            if (have && cp_v3_dot(&c, &t[(i - 1u) * ts]) < ZERO) {
+                cp_v3_comb(&c, -ONE, &c, ZERO, &c);
                 sg = -ONE;
             }
             for (k = have ? i : 0u; k <= i; k++) {
@@ -461,9 +434,9 @@ static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_
     t[(n - 1u) * ts] = t[(n - 2u) * ts];
     for (i = 1; i + 2u < n; i++) {
         cp_real ang;
-        cross3(&t[i * ts], &t[(i + 1u) * ts], &c);
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d0);
-        ang = cp_atan2(dot3(&c, &d0) / w->len[i], dot3(&t[i * ts], &t[(i + 1u) * ts]));
+        cp_v3_cross(&t[i * ts], &t[(i + 1u) * ts], &c);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d0);
+        ang = cp_atan2(cp_v3_dot(&c, &d0) / w->len[i], cp_v3_dot(&t[i * ts], &t[(i + 1u) * ts]));
         if (!(cp_fabs(ang) < CP_R(0.78539816339744830962))) {
             return CP_ERR_TWIST;
         }
@@ -487,9 +460,9 @@ static CP_NOINLINE void tilt_3d(const struct cp_vec3 *p, unsigned ps, uint32_t n
         if (n < 4u) {
             continue;
         }
-        sub3(&p[(v + 1u) * ps], &p[(v - 1u) * ps], &ch2);
+        cp_v3_sub(&p[(v + 1u) * ps], &p[(v - 1u) * ps], &ch2);
         cp_sincos(w->phi[v], &sn, &cs);
-        ks = TWO * sn / norm3(&ch2); /* signed 3-point curvature */
+        ks = TWO * sn / cp_v3_norm(&ch2); /* signed 3-point curvature */
         if (i == 0u) {
             chi[i] = ks * w->tau[1] * w->len[0] * w->len[1] / CP_R(3.0);
         } else if (i + 1u == n) {
@@ -515,13 +488,13 @@ static CP_NOINLINE void orient_3d(const struct cp_vec3 *p, unsigned ps, struct c
         uint32_t c = i + 1u < n ? i : n - 2u;
         struct cp_vec3 d, nd, nrm = t[i * ts];
         cp_real sn, cs;
-        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
-        comb3(ONE / norm3(&d), &d, ZERO, &d, &d);
-        cross3(&nrm, &d, &nd);
+        cp_v3_sub(&p[(c + 1u) * ps], &p[c * ps], &d);
+        cp_v3_comb(&d, ONE / cp_v3_norm(&d), &d, ZERO, &d);
+        cp_v3_cross(&nrm, &d, &nd);
         cp_sincos(-tan_angle(w, i, n), &sn, &cs);
-        comb3(cs, &d, sn, &nd, &t[i * ts]);
+        cp_v3_comb(&t[i * ts], cs, &d, sn, &nd);
         cp_sincos(chi[i], &sn, &cs);
-        comb3(cs, &t[i * ts], sn, &nrm, &t[i * ts]);
+        cp_v3_comb(&t[i * ts], cs, &t[i * ts], sn, &nrm);
     }
 }
 
@@ -639,29 +612,29 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
     struct cp_vec3 d, ga, gb, e1, e2, v1, vm;
     cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs;
     int i;
-    sub3(&b->p, &a->p, &d);
-    c = norm3(&d);
-    comb3(ONE / c, &d, ZERO, &d, &d);
-    td = dot3(&a->t, &d);
-    comb3(ONE, &a->t, -td, &d, &ga);
-    w = norm3(&ga);
+    cp_v3_sub(&b->p, &a->p, &d);
+    c = cp_v3_norm(&d);
+    cp_v3_comb(&d, ONE / c, &d, ZERO, &d);
+    td = cp_v3_dot(&a->t, &d);
+    cp_v3_comb(&ga, ONE, &a->t, -td, &d);
+    w = cp_v3_norm(&ga);
     ang = cp_atan2(w, td);
-    comb3(w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga, &ga);
-    td = dot3(&b->t, &d);
-    comb3(ONE, &b->t, -td, &d, &gb);
-    w = norm3(&gb);
+    cp_v3_comb(&ga, w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga);
+    td = cp_v3_dot(&b->t, &d);
+    cp_v3_comb(&gb, ONE, &b->t, -td, &d);
+    w = cp_v3_norm(&gb);
     ang = cp_atan2(w, td);
-    comb3(w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb, &gb);
+    cp_v3_comb(&gb, w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb);
     {
-        cp_real na = norm3(&ga), nb = norm3(&gb);
+        cp_real na = cp_v3_norm(&ga), nb = cp_v3_norm(&gb);
         struct cx gA, gB, rho;
         if (na > ZERO) {
-            comb3(ONE / na, &ga, ZERO, &ga, &e1);
-            cross3(&d, &e1, &e2);
+            cp_v3_comb(&e1, ONE / na, &ga, ZERO, &ga);
+            cp_v3_cross(&d, &e1, &e2);
             gA.re = na;
             gA.im = ZERO;
-            gB.re = dot3(&gb, &e1);
-            gB.im = dot3(&gb, &e2);
+            gB.re = cp_v3_dot(&gb, &e1);
+            gB.im = cp_v3_dot(&gb, &e2);
             rho = cdiv(gB, gA);
             rho.re = -rho.re;
             rho.im = -rho.im;
@@ -706,22 +679,22 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
             st = cmul(cc, e[0]);
             gmre = gA.re + st.re;
             gmim = st.im;
-            comb3(d1re, &e1, d1im, &e2, &v1);
-            comb3(gmre, &e1, gmim, &e2, &vm);
+            cp_v3_comb(&v1, d1re, &e1, d1im, &e2);
+            cp_v3_comb(&vm, gmre, &e1, gmim, &e2);
         } else {
-            comb3(CP_R(0.25), &ga, CP_R(-0.25), &gb, &v1);
-            comb3(CP_R(-0.25), &ga, CP_R(-0.25), &gb, &vm);
+            cp_v3_comb(&v1, CP_R(0.25), &ga, CP_R(-0.25), &gb);
+            cp_v3_comb(&vm, CP_R(-0.25), &ga, CP_R(-0.25), &gb);
         }
     }
     /* M = A + c/(2 cos al) (cos al d + sin al unit(D1)), al = |D1| */
-    al = norm3(&v1);
+    al = cp_v3_norm(&v1);
     cp_sincos(al, &sn, &cs);
     w = HALF * c / cs;
-    comb3(w * cs, &d, al > ZERO ? w * sn / al : ZERO, &v1, &v1);
-    comb3(ONE, &a->p, ONE, &v1, &m->p);
-    al = norm3(&vm);
+    cp_v3_comb(&v1, w * cs, &d, al > ZERO ? w * sn / al : ZERO, &v1);
+    cp_v3_comb(&m->p, ONE, &a->p, ONE, &v1);
+    al = cp_v3_norm(&vm);
     cp_sincos(al, &sn, &cs);
-    comb3(cs, &d, al > ZERO ? sn / al : ZERO, &vm, &m->t);
+    cp_v3_comb(&m->t, cs, &d, al > ZERO ? sn / al : ZERO, &vm);
 }
 
 void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m)
@@ -786,17 +759,17 @@ cp_real drc_kappa3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struc
 {
     struct cp_vec3 u, v, w, x;
     cp_real lu, lv, lw, s;
-    sub3(b, a, &u);
-    sub3(c, b, &v);
-    sub3(c, a, &w);
-    lu = norm3(&u);
-    lv = norm3(&v);
-    lw = norm3(&w);
+    cp_v3_sub(b, a, &u);
+    cp_v3_sub(c, b, &v);
+    cp_v3_sub(c, a, &w);
+    lu = cp_v3_norm(&u);
+    lv = cp_v3_norm(&v);
+    lw = cp_v3_norm(&w);
     if (!(lu > ZERO && lv > ZERO && lw > ZERO)) {
         return ZERO;
     }
-    cross3(&u, &v, &x);
-    s = norm3(&x) / (lu * lv);
+    cp_v3_cross(&u, &v, &x);
+    s = cp_v3_norm(&x) / (lu * lv);
     if (sgn && x.z < ZERO) {
         s = -s;
     }
@@ -808,19 +781,19 @@ cp_real drc_tau4(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct 
 {
     struct cp_vec3 u0, u1, u2, n1, n2, x;
     cp_real l1, l2, l;
-    sub3(b, a, &u0);
-    sub3(c, b, &u1);
-    sub3(d, c, &u2);
-    cross3(&u0, &u1, &n1);
-    cross3(&u1, &u2, &n2);
-    l1 = norm3(&n1);
-    l2 = norm3(&n2);
-    l = norm3(&u1);
+    cp_v3_sub(b, a, &u0);
+    cp_v3_sub(c, b, &u1);
+    cp_v3_sub(d, c, &u2);
+    cp_v3_cross(&u0, &u1, &n1);
+    cp_v3_cross(&u1, &u2, &n2);
+    l1 = cp_v3_norm(&n1);
+    l2 = cp_v3_norm(&n2);
+    l = cp_v3_norm(&u1);
     if (!(l1 > ZERO && l2 > ZERO && l > ZERO)) {
         return ZERO;
     }
-    cross3(&n1, &n2, &x);
-    return cp_atan2(dot3(&x, &u1) / (l * l1 * l2), dot3(&n1, &n2) / (l1 * l2)) / l;
+    cp_v3_cross(&n1, &n2, &x);
+    return cp_atan2(cp_v3_dot(&x, &u1) / (l * l1 * l2), cp_v3_dot(&n1, &n2) / (l1 * l2)) / l;
 }
 
 /* One step of the extremum count: differences below thr are flat. */
@@ -1225,12 +1198,12 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint3
                 return CP_ERR_NUMERIC;
             }
             if (r >= 2u && r <= it->head.steps) { /* distance of q1 from the chord q0 pt.p */
-                sub3(&pt.p, &q0, &u);
-                sub3(&q1, &q0, &v);
-                x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
+                cp_v3_sub(&pt.p, &q0, &u);
+                cp_v3_sub(&q1, &q0, &v);
+                x = -cp_v3_dot(&u, &v) / cp_v3_dot(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
                                                      v + x u, bit for bit) */
-                comb3(x, &u, ONE, &v, &v);
-                x = CP_R(0.25) * norm3(&v);
+                cp_v3_comb(&v, x, &u, ONE, &v);
+                x = CP_R(0.25) * cp_v3_norm(&v);
                 if (!(x >= ZERO)) { /* NaN: pt == q0 (a zero chord), no sagitta (B4) */
                     return CP_ERR_NUMERIC;
                 }

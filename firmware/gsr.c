@@ -14,13 +14,13 @@
  *     G_u     = ts (1 - k1 a A - k2 b S) T + (a' A - tw b S) N + (b' S + tw a A) B
  * (ts = f_t' |C'|, tw = ts w). The T component is ts times the sweep regularity
  * g = 1 - k.(G - C) of C.3: g > 0 (checked at init) keeps G_u off the section plane, and
- * n = unit(G_theta x G_u) = unit(b A uT N + a S uT B - (a S uB + b A uN) T) points away
+ * n = cp_v3_unit(G_theta x G_u) = cp_v3_unit(b A uT N + a S uT B - (a S uB + b A uN) T) points away
  * from C (its in-plane part is the ellipse's outward normal times uT > 0).
  *
- * Frames. All four are the projection frame of an axis a: U = unit(a - (a.T) T), V = T x U,
+ * Frames. All four are the projection frame of an axis a: U = cp_v3_unit(a - (a.T) T), V = T x U,
  * rotated by phi: N = cos phi U + sin phi V, B = T x N. N0: a = N0, phi = 0. FIXED: a = +y,
  * phi = -90 deg (N = -V = (T_z, 0, -T_x), B = U = +y exactly when T_y = 0, C.1). FRENET:
- * a = C'' (U = the principal normal, V = T x U = unit(C' x C''), eq. 9; |U|^2 before
+ * a = C'' (U = the principal normal, V = T x U = cp_v3_unit(C' x C''), eq. 9; |U|^2 before
  * normalizing over |a|^2 = |C' x C''|^2 / (|C'| |C''|)^2, the test of C.3). RMF: a = ref,
  * phi from the table. The twist (per arc length) of the projection frame is
  *     U'.V / |C'| = (a'.V - (a.T)(C''.V) / |C'|) / (|a - (a.T) T| |C'|)
@@ -53,43 +53,6 @@
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
 
-/* The vector helpers below forward to the shared ones of cp_math.h (one copy in the
- * image; the same operations in the same order). A struct cp_vec3 is read as 3 reals
- * (the assert above). */
-#define V3(v) ((cp_real *)(v))
-#define CV3(v) ((const cp_real *)(v))
-
-static cp_real dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
-{
-    return cp_v3_dot(CV3(a), CV3(b));
-}
-
-/* o = a x b (o may alias a or b) */
-static void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_cross(CV3(a), CV3(b), V3(o));
-}
-
-/* o = p a + q b (o may alias a or b; p = 1 or q = 0 are exact) */
-static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
-                 const struct cp_vec3 *b)
-{
-    cp_v3_comb(V3(o), p, CV3(a), q, CV3(b));
-}
-
-/* Short loops of calls kept rolled in size builds (-Os peels them: more bytes). */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define GSR_ROLLED _Pragma("GCC unroll 1")
-#else
-#define GSR_ROLLED
-#endif
-
-/* Normalize v (each component times 1/|v|); returns its former length. */
-static cp_real unit(struct cp_vec3 *v)
-{
-    return cp_v3_unit((cp_real *)v);
-}
-
 /* Scalar family at x: d[0], d[3], d[6], d[9] = f, f', f'', f''' (stride 3: one component
  * of a vector jet, see centre_jet and sec_eval). */
 static void sfun(const cp_real *a, cp_real x, cp_real *d)
@@ -112,14 +75,18 @@ static void sfun(const cp_real *a, cp_real x, cp_real *d)
 }
 
 /* Centre jet at t: j[0] = C, j[1] = C', j[2] = C'', j[3] = C''' from the power-basis
- * coefficients g->cp (sfun writes each axis straight into its component: a struct cp_vec3
- * is 3 reals, the jet 12). */
+ * coefficients g->cp (sfun per axis: d[k][axis] is the k-th derivative). */
 static CP_NOINLINE void centre_jet(const struct gsr *g, cp_real t, struct cp_vec3 *j)
 {
-    unsigned ax;
-    GSR_ROLLED
+    cp_real d[4][3];
+    unsigned ax, k;
     for (ax = 0; ax < 3u; ax++) {
-        sfun(&g->cp[ax * GSR_FN], t, V3(j) + ax);
+        sfun(&g->cp[ax * GSR_FN], t, &d[0][ax]);
+    }
+    for (k = 0; k < 4u; k++) {
+        j[k].x = d[k][0];
+        j[k].y = d[k][1];
+        j[k].z = d[k][2];
     }
 }
 
@@ -134,12 +101,12 @@ struct pframe {
 static cp_real proj(const struct cp_vec3 *a, const struct cp_vec3 *ad, const struct cp_vec3 *T,
                     const struct cp_vec3 *d2, cp_real sp, struct pframe *f)
 {
-    cp_real pa = dot(a, T), q, wl;
-    comb(&f->u, CP_R(1.0), a, -pa, T);
-    q = dot(&f->u, &f->u) / dot(a, a);
-    wl = unit(&f->u);
-    cross(T, &f->u, &f->v);
-    f->w = (dot(ad, &f->v) - pa * dot(d2, &f->v) / sp) / (wl * sp);
+    cp_real pa = cp_v3_dot(a, T), q, wl;
+    cp_v3_comb(&f->u, CP_R(1.0), a, -pa, T);
+    q = cp_v3_dot(&f->u, &f->u) / cp_v3_dot(a, a);
+    wl = cp_v3_unit(&f->u);
+    cp_v3_cross(T, &f->u, &f->v);
+    f->w = (cp_v3_dot(ad, &f->v) - pa * cp_v3_dot(d2, &f->v) / sp) / (wl * sp);
     return q;
 }
 
@@ -173,7 +140,6 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     cp_real f[4][3], sp, s2, q, w, ty, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
     int err = CP_OK;
-    GSR_ROLLED
     for (i = 0; i < 3u; i++) { /* f[k][i]: k-th derivative of f_N, f_B, f_t */
         sfun(cf->r[i], u, &f[0][i]);
     }
@@ -186,8 +152,8 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     s->c = jet[0];
     s->t = jet[1];
     ty = s->t.y;
-    s2 = dot(&s->t, &s->t);
-    sp = unit(&s->t);
+    s2 = cp_v3_dot(&s->t, &s->t);
+    sp = cp_v3_unit(&s->t);
     s->ts = f[1][2] * sp;
     if (g->frame == GSR_FRAME_FRENET) {
         ax = d2;
@@ -202,11 +168,11 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         cp_sincos(rmf_phi(g, f[0][2]), &cs[1], &cs[0]);
         pf.w = CP_R(0.0);
     }
-    comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
-    cross(&s->t, &s->n, &s->b);
+    cp_v3_comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
+    cp_v3_cross(&s->t, &s->n, &s->b);
     s->tw = s->ts * pf.w;
-    s->k1 = dot(d2, &s->n) / s2;
-    s->k2 = dot(d2, &s->b) / s2;
+    s->k1 = cp_v3_dot(d2, &s->n) / s2;
+    s->k2 = cp_v3_dot(d2, &s->b) / s2;
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
     if (g->frame == GSR_FRAME_FIXED && ty != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
@@ -218,7 +184,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         err = CP_ERR_DEGENERATE;
     } else if (!(q > GSR_EPS * GSR_EPS)) {
         err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
-    } else if (!cp_finite(dot(&s->c, &s->n) + s->tw + w)) {
+    } else if (!cp_finite(cp_v3_dot(&s->c, &s->n) + s->tw + w)) {
         /* C.N is finite iff C and N are (|C| <= ~1e5 mm from the coefficient limits, |N|
          * = 1: no product overflows; an Inf or NaN component makes a product Inf or NaN) */
         err = CP_ERR_NUMERIC;
@@ -245,7 +211,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     for (i = 0; i <= total; i++) {
         t = g->t0 + span * ((cp_real)i / (cp_real)total);
         centre_jet(g, t, j);
-        sp = unit(&j[1]);
+        sp = cp_v3_unit(&j[1]);
         if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &pf) > GSR_EPS * GSR_EPS)) {
             return CP_R(-1.0);
         }
@@ -347,7 +313,7 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
               cp_fabs(c[GSR_W]) * (cp_fabs(c[GSR_B]) + cp_fabs(c[GSR_C]));
     }
     g->d1 = d1;
-    if (cf->frame >= GSR_FRAME_N0 && !(dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
+    if (cf->frame >= GSR_FRAME_N0 && !(cp_v3_dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
         return CP_ERR_RANGE;
     }
     sfun(cf->r[2], CP_R(0.0), a);
@@ -370,7 +336,7 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
         }
         rmax = s.fn > rmax ? s.fn : rmax;
         rmax = s.fb > rmax ? s.fb : rmax;
-        if (!(dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
+        if (!(cp_v3_dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
             return cf->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
         }
         bp = s.b;
@@ -393,11 +359,11 @@ static void point(const struct gsr_sec *s, cp_real cx, cp_real cy, cp_real ax, c
     cp_real ut = s->ts * (CP_R(1.0) - s->k1 * ax - s->k2 * by);
     cp_real un = s->dfn * cx - s->tw * by;
     cp_real ub = s->dfb * cy + s->tw * ax;
-    comb(p, CP_R(1.0), &s->c, ax, &s->n);
-    comb(p, CP_R(1.0), p, by, &s->b);
-    comb(n, fb * cx * ut, &s->n, fn * cy * ut, &s->b);
-    comb(n, CP_R(1.0), n, -(fn * cy * ub + fb * cx * un), &s->t);
-    (void)unit(n);
+    cp_v3_comb(p, CP_R(1.0), &s->c, ax, &s->n);
+    cp_v3_comb(p, CP_R(1.0), p, by, &s->b);
+    cp_v3_comb(n, fb * cx * ut, &s->n, fn * cy * ut, &s->b);
+    cp_v3_comb(n, CP_R(1.0), n, -(fn * cy * ub + fb * cx * un), &s->t);
+    (void)cp_v3_unit(n);
 }
 
 void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
@@ -642,12 +608,12 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct raster_pt *pt)
     by = s->fb * it->cc[1];
     r = it->tool_r;
     point(s, it->cc[0], it->cc[1], ax, by, &pt->p, &pt->n);
-    comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
+    cp_v3_comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
     if (it->output == RASTER_OUT_TIP) {
         pt->p.z -= r;
     }
-    g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
-    if (err == CP_OK && !cp_finite(dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
+    g = CP_R(1.0) - s->k1 * (ax + r * cp_v3_dot(&pt->n, &s->n)) - s->k2 * (by + r * cp_v3_dot(&pt->n, &s->b));
+    if (err == CP_OK && !cp_finite(cp_v3_dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
         err = CP_ERR_NUMERIC;
     }
     return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;
@@ -675,9 +641,9 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
             px[0] = CP_R(0.5) * (px[0] + x[0]);
             px[1] = CP_R(0.5) * (px[1] + x[1]);
             err = pt_at(it, px, &m);
-            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &a.p);
-            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &b.p);
-            px[0] = cp_sqrt(dot(&m.p, &m.p));
+            cp_v3_comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &a.p);
+            cp_v3_comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &b.p);
+            px[0] = cp_sqrt(cp_v3_dot(&m.p, &m.p));
             sag[c] = px[0] > sag[c] ? px[0] : sag[c];
         }
         a.p = b.p;

@@ -162,9 +162,12 @@ int test_channel_surface_ref(void)
         CHECK_NEAR(r.alpha, o.alpha, 10.0 * TOL_REL, 0);
         CHECK_NEAR(r.s, o.s, 0, TOL_REL);
         CHECK_NEAR(r.n, o.n, 0, TOL_REL);
-        for (j = 0; j < 3; j++) {
-            CHECK_NEAR(r.e1[j], o.e1[j], 10.0 * TOL_REL, 0);
-            CHECK_NEAR(r.e2[j], o.e2[j], 10.0 * TOL_REL, 0);
+        {
+            const cp_real e1[3] = {r.e1.x, r.e1.y, r.e1.z}, e2[3] = {r.e2.x, r.e2.y, r.e2.z};
+            for (j = 0; j < 3; j++) {
+                CHECK_NEAR(e1[j], o.e1[j], 10.0 * TOL_REL, 0);
+                CHECK_NEAR(e2[j], o.e2[j], 10.0 * TOL_REL, 0);
+            }
         }
         for (k = 0; k < 8; k++) { /* w = k pi/4 */
             double pr[3], nr[3], gr, e, en;
@@ -238,11 +241,11 @@ int test_channel_nodes_area(void)
         for (k = 0; k <= 4000; k++) {
             double x, y, q[3];
             channel_point(&r, (cp_real)(2.0 * PI_D * (k % 4000) / 4000.0 - PI_D), &p, &nm, &gg);
-            q[0] = (double)p.x - r.l[0];
-            q[1] = (double)p.y - r.l[1];
-            q[2] = (double)p.z - r.l[2];
-            x = q[0] * r.e1[0] + q[1] * r.e1[1] + q[2] * r.e1[2];
-            y = q[0] * r.e2[0] + q[1] * r.e2[1] + q[2] * r.e2[2];
+            q[0] = (double)p.x - r.l.x;
+            q[1] = (double)p.y - r.l.y;
+            q[2] = (double)p.z - r.l.z;
+            x = q[0] * r.e1.x + q[1] * r.e1.y + q[2] * r.e1.z;
+            y = q[0] * r.e2.x + q[1] * r.e2.y + q[2] * r.e2.z;
             if (k > 0) {
                 area += x0 * y - x * y0;
             }
