@@ -4,7 +4,7 @@
  *
  * Build and run: make maxpoint (mk/hardening.mk; docs/SOAK.md). Each job is built the
  * way the firmware builds it: job_init + job_command for every protocol line, then
- * canal_path_init on job.cfg (proto.c does exactly this at RUN). Then every
+ * canal_path_init on job.canal and job.cfg (proto.c does the same at RUN). Then every
  * canal_path_next() call of the whole job is timed with TIMER0, as bench/bench_m4f.c
  * does: with -icount shift=7 one instruction is 128 ns of virtual time and TIMER0
  * ticks every 40 ns, so a span of `ticks` is round(ticks * 40 / 128) instructions,

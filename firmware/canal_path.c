@@ -569,6 +569,8 @@ int canal_path_init(struct canal_path *tp, const struct canal_cfg *surf,
     if (tp == NULL || surf == NULL || cfg == NULL) {
         return CP_ERR_INVAL;
     }
+    tp->head.count = 0u; /* (until init succeeds) */
+    tp->head.k = 0u;
     err = canal_init(&tp->surf, surf);
     if (err != CP_OK) {
         return err;
@@ -650,10 +652,9 @@ static CP_NOINLINE void quad_to(struct canal_path *tp, uint32_t target, int back
 
 int canal_path_seek(struct canal_path *tp, uint32_t k)
 {
-    if (k > tp->head.count) {
+    if (raster_seek(&tp->head, k) != CP_OK) {
         return CP_ERR_RANGE;
     }
-    tp->head.k = k;
     tp->quad_valid = 0u; /* no quadrature state yet: next() positions it */
     if (k == 0u && tp->head.mode == RASTER_CIRCLES) {
         /* the stream starts at node 0: set it up now, so the first point costs what

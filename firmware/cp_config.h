@@ -50,7 +50,7 @@
 #define CP_MAX_LINK 64
 #endif
 
-/* Byte budget of the complete canal toolpath context (struct canal_path), float build
+/* Byte budget of the complete canal iterator context (struct canal_path), float build
  * (the double build may use twice this). */
 #ifndef CP_CANAL_PATH_BUDGET
 #define CP_CANAL_PATH_BUDGET 256

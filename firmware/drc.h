@@ -48,7 +48,7 @@
  *     pt.n = the unit surface normal. Lambda = integral kappa dR is summed over the
  *     thickened points (drc.c, rule and error bound there).
  *
- * Footprint (the whole M4F image must fit 32 KB flash): the stream uses only the planar
+ * Footprint: the stream uses only the planar
  * core (validation, tangent assignment, planar insertion) and the iterator, ~5.5 KB of
  * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
  * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4

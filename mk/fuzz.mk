@@ -33,7 +33,7 @@ FUZZ_CFLAGS  := -std=c99 -g -fno-omit-frame-pointer $(FPFLAGS) $(INC) $(FUZZ_SAN
 # coverage stays. frame_crc16 has no coverage at all (its 8 branches per byte are
 # data bits, not paths). Sanitizers stay on everywhere.
 # The same holds for the other geometry and number formatting: the surface models
-# (drc, gsr, channel), the canal iterator (toolpath), its dispatcher (path) and the
+# (drc, gsr, channel), the canal iterator (canal_path), its dispatcher (path) and the
 # output number formatter (fmt) compare only values computed from parsed numbers or
 # from the fixed jobs of fuzz_run; a text number's binary image never occurs in the
 # input, so their compare hints never helped a mutation. In fuzz_run the hooks of
