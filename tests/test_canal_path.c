@@ -224,7 +224,7 @@ int test_canal_path_zigzag(void)
     CHECK_EQ_INT(canal_path_next(&tp, &pt), CP_ERR_DONE);
     TEST_NOTE("zigzag: %u points, steps %u, substeps %u, link %u, max step %.4f mm, sphere "
               "residual %.2g mm, envelope residual %.2g mm\n",
-              (unsigned)n, tp.head.steps, tp.substeps, tp.head.link, maxgap, maxr, maxa);
+              (unsigned)n, (unsigned)tp.head.steps, tp.substeps, tp.head.link, maxgap, maxr, maxa);
     /* no gaps: every move is short (a chord of <= 2 um sagitta on radii <= 16 mm) */
     CHECK(maxgap < 0.6);
     CHECK(maxr < 2e-5);
@@ -259,7 +259,7 @@ int test_canal_path_circles(void)
         k++;
     }
     CHECK_EQ_INT(k, canal_path_count(&tp));
-    TEST_NOTE("circles: %u points, steps %u, link %u, max step %.4f mm\n", (unsigned)k, tp.head.steps,
+    TEST_NOTE("circles: %u points, steps %u, link %u, max step %.4f mm\n", (unsigned)k, (unsigned)tp.head.steps,
               tp.head.link, maxgap);
     CHECK(maxgap < 0.6);
     CHECK(maxr < 2e-5);
