@@ -46,7 +46,8 @@ static void model_defaults(unsigned k, union path_geom *g)
         job_drc_defaults(g);
         break;
 #endif
-    default: /* the canal: job_geom_fill copies j->canal at RUN */
+    default: /* the canal: job_geom_fill copies j->canal into g at RUN */
+        (void)g;
         break;
     }
 }
