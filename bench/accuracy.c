@@ -1,5 +1,5 @@
 /* accuracy.c - host benchmark: max error vs step count, contact-frame single
- * quadrature (firmware/toolpath.c) against the paper's Frenet two-quadrature form
+ * quadrature (firmware/canal_path.c) against the paper's Frenet two-quadrature form
  * (bench/frenet.c), on the paper's example where the exact grid is elementary:
  * Lambda(t) = (11/6)(cos 2t - 1) (MATH-canal §7), evaluated in long double at the
  * same (cp_real) t nodes the firmware used.
@@ -9,7 +9,7 @@
 #include <stdio.h>
 
 #include "frenet.h"
-#include "toolpath.h"
+#include "canal_path.h"
 
 #define NLINES 5
 static const double u0s[NLINES] = {-0.5, -0.33, -0.16, 0.01, 0.18};
@@ -42,30 +42,31 @@ static double err3(const struct cp_vec3 *p, const long double m[3])
  * Lambda of ARC. */
 static double ours(uint32_t n, int ellipse)
 {
-    struct toolpath_cfg cfg = {0};
-    struct toolpath tp;
-    struct toolpath_pt pt;
+    struct raster_cfg cfg = {0};
+    struct canal_cfg surf = {0};
+    struct canal_path tp;
+    struct raster_pt pt;
     double worst = 0.0;
-    cfg.surf.curve = ellipse ? CANAL_ELLIPSE : CANAL_ARC;
-    cfg.surf.radius = CANAL_R_COS;
-    cfg.surf.cp[2] = CP_R(3.0);
-    cfg.surf.cp[3] = ellipse ? CP_R(3.0) : CP_R(0.0);
-    cfg.surf.cp[4] = ellipse ? CP_R(0.0) : CP_TWO_PI;
-    cfg.surf.cp[5] = ellipse ? CP_TWO_PI : CP_R(0.0);
-    cfg.surf.rp[0] = CP_R(5.5);
-    cfg.surf.rp[1] = CP_R(10.5);
-    cfg.surf.rp[2] = CP_R(2.0);
-    cfg.mode = TOOLPATH_LINES;
+    surf.curve = ellipse ? CANAL_ELLIPSE : CANAL_ARC;
+    surf.radius = CANAL_R_COS;
+    surf.cp[2] = CP_R(3.0);
+    surf.cp[3] = ellipse ? CP_R(3.0) : CP_R(0.0);
+    surf.cp[4] = ellipse ? CP_R(0.0) : CP_TWO_PI;
+    surf.cp[5] = ellipse ? CP_TWO_PI : CP_R(0.0);
+    surf.rp[0] = CP_R(5.5);
+    surf.rp[1] = CP_R(10.5);
+    surf.rp[2] = CP_R(2.0);
+    cfg.mode = RASTER_LINES;
     cfg.n = NLINES;
     cfg.u0 = (cp_real)u0s[0];
     cfg.u1 = (cp_real)u0s[NLINES - 1];
     cfg.steps = (uint16_t)n;
     cfg.substeps = 1;
     cfg.link = 0;
-    if (toolpath_init(&tp, &cfg) != CP_OK) {
+    if (canal_path_init(&tp, &surf, &cfg) != CP_OK) {
         return -1.0;
     }
-    while (toolpath_next(&tp, &pt) == CP_OK) {
+    while (canal_path_next(&tp, &pt) == CP_OK) {
         long double m[3];
         double e;
         long double u0 = (long double)cfg.u0 +

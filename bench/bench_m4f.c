@@ -26,7 +26,7 @@
 #include "hal_mem.h"
 #include "proto.h"
 #include "cp_math.h"
-#include "toolpath.h"
+#include "canal_path.h"
 #include "drc.h"
 #include "channel.h"
 #include "gsr.h"
@@ -115,20 +115,23 @@ static void call_proto_info(void)
 
 
 /* ---- canal core on the paper's example: ARC r = 3, R = 5.5 cos 2t + 10.5 ---- */
-static struct toolpath tp_bench;
-static struct toolpath_pt tp_pt;
+static struct canal_path tp_bench;
+static struct raster_pt tp_pt;
+static struct canal_cfg tp_surf;
 
-static void paper_cfg(struct toolpath_cfg *c, uint16_t n, uint16_t steps)
+/* The paper's surface into tp_surf, a raster of n lines of `steps` steps into *c. */
+static void paper_cfg(struct raster_cfg *c, uint16_t n, uint16_t steps)
 {
+    memset(&tp_surf, 0, sizeof tp_surf);
     memset(c, 0, sizeof *c);
-    c->surf.curve = CANAL_ARC;
-    c->surf.radius = CANAL_R_COS;
-    c->surf.cp[2] = CP_R(3.0);
-    c->surf.cp[4] = CP_TWO_PI;
-    c->surf.rp[0] = CP_R(5.5);
-    c->surf.rp[1] = CP_R(10.5);
-    c->surf.rp[2] = CP_R(2.0);
-    c->mode = TOOLPATH_LINES;
+    tp_surf.curve = CANAL_ARC;
+    tp_surf.radius = CANAL_R_COS;
+    tp_surf.cp[2] = CP_R(3.0);
+    tp_surf.cp[4] = CP_TWO_PI;
+    tp_surf.rp[0] = CP_R(5.5);
+    tp_surf.rp[1] = CP_R(10.5);
+    tp_surf.rp[2] = CP_R(2.0);
+    c->mode = RASTER_LINES;
     c->n = n;
     c->u0 = CP_R(-0.3);
     c->u1 = CP_R(0.1);
@@ -141,34 +144,34 @@ static void paper_cfg(struct toolpath_cfg *c, uint16_t n, uint16_t steps)
  * (ARC + COS law), Simpson + Kahan on Lambda, frame, label, point, checks. */
 static void setup_tp_next(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     int i;
     paper_cfg(&c, 1, 256);
-    bench_sink = toolpath_init(&tp_bench, &c);
+    bench_sink = canal_path_init(&tp_bench, &tp_surf, &c);
     for (i = 0; i < 101; i++) {
-        bench_sink = toolpath_next(&tp_bench, &tp_pt);
+        bench_sink = canal_path_next(&tp_bench, &tp_pt);
     }
 }
 
 static void call_tp_next(void)
 {
-    bench_sink = toolpath_next(&tp_bench, &tp_pt);
+    bench_sink = canal_path_next(&tp_bench, &tp_pt);
 }
 
 /* The same circle given as an ELLIPSE (A = B = 3): the general path, Simpson + Kahan
  * on Lambda with 1 panel per step (2 jets per point). */
 static void setup_tp_next_ellipse(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     int i;
     paper_cfg(&c, 1, 256);
-    c.surf.curve = CANAL_ELLIPSE;
-    c.surf.cp[3] = CP_R(3.0);
-    c.surf.cp[4] = CP_R(0.0);
-    c.surf.cp[5] = CP_TWO_PI;
-    bench_sink = toolpath_init(&tp_bench, &c);
+    tp_surf.curve = CANAL_ELLIPSE;
+    tp_surf.cp[3] = CP_R(3.0);
+    tp_surf.cp[4] = CP_R(0.0);
+    tp_surf.cp[5] = CP_TWO_PI;
+    bench_sink = canal_path_init(&tp_bench, &tp_surf, &c);
     for (i = 0; i < 101; i++) {
-        bench_sink = toolpath_next(&tp_bench, &tp_pt);
+        bench_sink = canal_path_next(&tp_bench, &tp_pt);
     }
 }
 
@@ -243,19 +246,19 @@ static void setup_frame(void)
  * step counts and proves regularity before the first point. */
 static void call_tp_init(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     paper_cfg(&c, 5, 0);
     c.substeps = 0;
     c.tol = CP_R(0.002);
-    c.link = TOOLPATH_LINK_AUTO;
-    bench_sink = toolpath_init(&tp_bench, &c);
+    c.link = RASTER_LINK_AUTO;
+    bench_sink = canal_path_init(&tp_bench, &tp_surf, &c);
 }
 
 /* ---- DRC (seed 001): thickening and its streams ---- */
 static struct drc_pt drc_a, drc_b, drc_m;
 static struct drc_cfg drc_g;
 static struct drc_path drc_it;
-static struct toolpath_pt drc_pt;
+static struct raster_pt drc_pt;
 static struct cp_vec3 drc_tan[12];
 
 /* a 7-point spiral (the unit tests' spiral_nonuniform, scaled x10), 3D variant lifted */
@@ -328,7 +331,7 @@ static void setup_drc_tangents(void)
 /* 32 streamed points = one original segment at K = 5 (32 inserted points): EDGE OFF */
 static void setup_drc_curve32(void)
 {
-    static struct toolpath_cfg c; /* drc_path keeps a pointer to its raster */
+    static struct raster_cfg c; /* drc_path keeps a pointer to its raster */
     int i;
     drc_geom(0, 0, 5);
     memset(&c, 0, sizeof c);
@@ -351,7 +354,7 @@ static void call_drc_next32(void)
 /* the same on a fillet (EDGE ON, 1 line, LINEAR radius law): + Lambda, frame, point */
 static void setup_drc_edge32(void)
 {
-    static struct toolpath_cfg c; /* drc_path keeps a pointer to its raster */
+    static struct raster_cfg c; /* drc_path keeps a pointer to its raster */
     int i;
     drc_geom(1, 0, 5);
     memset(&c, 0, sizeof c);
@@ -359,10 +362,10 @@ static void setup_drc_edge32(void)
     c.u0 = CP_R(0.5);
     c.u1 = CP_R(0.5);
     c.tol = CP_R(0.001);
-    c.link = TOOLPATH_LINK_AUTO;
-    c.surf.radius = CANAL_R_LINEAR;
-    c.surf.rp[0] = CP_R(3.0);
-    c.surf.rp[1] = CP_R(5.0);
+    c.link = RASTER_LINK_AUTO;
+    drc_g.radius = CANAL_R_LINEAR;
+    drc_g.rp[0] = CP_R(3.0);
+    drc_g.rp[1] = CP_R(5.0);
     bench_sink = drc_path_init(&drc_it, &drc_g, &c);
     for (i = 0; i < 64; i++) {
         bench_sink = drc_path_next(&drc_it, &drc_pt);
@@ -373,7 +376,7 @@ static void setup_drc_edge32(void)
 static struct channel_cfg ch_g;
 static struct channel_path ch_it;
 static struct channel_row ch_row;
-static struct toolpath_pt ch_pt;
+static struct raster_pt ch_pt;
 static volatile cp_real ch_u = CP_R(0.731);
 
 static void ch_geom(void)
@@ -398,7 +401,7 @@ static void ch_geom(void)
     }
 }
 
-static void ch_raster(struct toolpath_cfg *c, uint8_t mode)
+static void ch_raster(struct raster_cfg *c, uint8_t mode)
 {
     memset(c, 0, sizeof *c);
     c->mode = mode;
@@ -413,9 +416,9 @@ static void ch_raster(struct toolpath_cfg *c, uint8_t mode)
  * section, frame; then the point and its normal; the angle's logs are cached per line) */
 static void setup_ch_lines(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     ch_geom();
-    ch_raster(&c, TOOLPATH_LINES);
+    ch_raster(&c, RASTER_LINES);
     bench_sink = channel_path_init(&ch_it, &ch_g, &c);
     bench_sink = channel_path_seek(&ch_it, 50u);
     bench_sink = channel_path_next(&ch_it, &ch_pt);
@@ -429,9 +432,9 @@ static void call_ch_next(void)
 /* one point of a CIRCLES raster: the row is cached for the ring (sincos, 2 logs, 2 exps) */
 static void setup_ch_circles(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     ch_geom();
-    ch_raster(&c, TOOLPATH_CIRCLES);
+    ch_raster(&c, RASTER_CIRCLES);
     bench_sink = channel_path_init(&ch_it, &ch_g, &c);
     bench_sink = channel_path_seek(&ch_it, 50u);
     bench_sink = channel_path_next(&ch_it, &ch_pt);
@@ -452,11 +455,11 @@ static void call_ch_row(void)
 /* RUN's validation: model, evaluation grid, step/link derivation and walks (LINES 3, 10 um) */
 static void call_ch_init(void)
 {
-    struct toolpath_cfg c;
-    ch_raster(&c, TOOLPATH_LINES);
+    struct raster_cfg c;
+    ch_raster(&c, RASTER_LINES);
     c.steps = 0;
     c.tol = CP_R(0.01);
-    c.link = TOOLPATH_LINK_AUTO;
+    c.link = RASTER_LINK_AUTO;
     bench_sink = channel_path_init(&ch_it, &ch_g, &c);
 }
 
@@ -464,12 +467,12 @@ static void call_ch_init(void)
 /* ---- GSR (seed 003): one streamed point, rational vs trigonometric section ---- */
 static struct gsr_cfg gsr_g;
 static struct gsr_path gsr_it;
-static struct toolpath_pt gsr_pt;
+static struct raster_pt gsr_pt;
 
 /* Bezier centre, polynomial radii, RMF: no trigonometry outside the section form. */
 static void gsr_setup(uint8_t mode, uint8_t form, int g1)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     int i;
     memset(&gsr_g, 0, sizeof gsr_g);
     if (g1) { /* C.4 G1: two sinusoids (centre z and f_N): 2 sincos per new section */
@@ -509,22 +512,22 @@ static void gsr_setup(uint8_t mode, uint8_t form, int g1)
 
 static void setup_gsr_ring_rational(void)
 {
-    gsr_setup(TOOLPATH_CIRCLES, GSR_SECTION_RATIONAL, 0);
+    gsr_setup(RASTER_CIRCLES, GSR_SECTION_RATIONAL, 0);
 }
 
 static void setup_gsr_ring_trig(void)
 {
-    gsr_setup(TOOLPATH_CIRCLES, GSR_SECTION_TRIG, 0);
+    gsr_setup(RASTER_CIRCLES, GSR_SECTION_TRIG, 0);
 }
 
 static void setup_gsr_line_rational(void)
 {
-    gsr_setup(TOOLPATH_LINES, GSR_SECTION_RATIONAL, 0);
+    gsr_setup(RASTER_LINES, GSR_SECTION_RATIONAL, 0);
 }
 
 static void setup_gsr_line_g1(void)
 {
-    gsr_setup(TOOLPATH_LINES, GSR_SECTION_RATIONAL, 1);
+    gsr_setup(RASTER_LINES, GSR_SECTION_RATIONAL, 1);
 }
 
 static void call_gsr_next(void)
@@ -543,14 +546,14 @@ static void call_gsr_rational(void)
 
 static void call_gsr_init(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     memset(&c, 0, sizeof c);
-    c.mode = TOOLPATH_LINES;
+    c.mode = RASTER_LINES;
     c.n = 5;
     c.u0 = -0.5f * CP_PI;
     c.u1 = 0.5f * CP_PI;
     c.tol = 0.002f;
-    c.link = TOOLPATH_LINK_AUTO;
+    c.link = RASTER_LINK_AUTO;
     bench_sink = gsr_path_init(&gsr_it, &gsr_g, &c);
 }
 
@@ -578,14 +581,14 @@ static const struct bench_case cases[] = {
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
     {"proto_poll_idle", setup_proto_idle, call_proto_idle},
     {"proto_poll_$I_line", setup_proto_info, call_proto_info},
-    {"toolpath_next_1line", setup_tp_next, call_tp_next},
-    {"toolpath_next_ellipse", setup_tp_next_ellipse, call_tp_next},
+    {"canal_path_next_1line", setup_tp_next, call_tp_next},
+    {"canal_path_next_ellipse", setup_tp_next_ellipse, call_tp_next},
     {"canal_point_extra_line", setup_extra_line, call_extra_line},
     {"canal_jet_arc_cos", setup_tp_next, call_jet},
     {"frenet_baseline_step", setup_frenet, call_frenet},
     {"cp_sincos", setup_none, call_sincos},
     {"canal_frame", setup_frame, call_frame},
-    {"toolpath_init_tol2um", setup_none, call_tp_init},
+    {"canal_path_init_tol2um", setup_none, call_tp_init},
     {"drc_insert_planar", setup_drc_insert, call_drc_insert_planar},
     {"drc_insert_3d", setup_drc_insert_3d, call_drc_insert_3d},
     {"drc_tangents_7pt", setup_drc_tangents, call_drc_tangents},

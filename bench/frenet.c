@@ -68,7 +68,7 @@ int frenet_init(struct frenet *fr, cp_real cx, cp_real cy, cp_real r, cp_real b,
     fr->h = (t1 - t0) / (cp_real)n;
     fr->i = 0xFFFFFFFFu;
     fjet_eval(fr, t0, &j);
-    if (!cp_isfinite(j.v1) || !cp_isfinite(j.x) || u0 == CP_R(0.0)) {
+    if (!cp_finite(j.v1) || !cp_finite(j.x) || u0 == CP_R(0.0)) {
         return CP_ERR_RANGE;
     }
     q0 = cp_sqrt(CP_R(1.0) + j.d1[2] * j.d1[2] / (j.d1[0] * j.d1[0] + j.d1[1] * j.d1[1]));

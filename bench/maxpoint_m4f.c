@@ -4,12 +4,12 @@
  *
  * Build and run: make maxpoint (mk/hardening.mk; docs/SOAK.md). Each job is built the
  * way the firmware builds it: job_init + job_command for every protocol line, then
- * toolpath_init on job.cfg (proto.c does exactly this at RUN). Then every
- * toolpath_next() call of the whole job is timed with TIMER0, as bench/bench_m4f.c
+ * canal_path_init on job.canal and job.cfg (proto.c does the same at RUN). Then every
+ * canal_path_next() call of the whole job is timed with TIMER0, as bench/bench_m4f.c
  * does: with -icount shift=7 one instruction is 128 ns of virtual time and TIMER0
  * ticks every 40 ns, so a span of `ticks` is round(ticks * 40 / 128) instructions,
  * exact. The empty call (the two timer reads and an indirect call) is measured the
- * same way and subtracted, so a row is the instructions of toolpath_next itself.
+ * same way and subtracted, so a row is the instructions of canal_path_next itself.
  *
  * Per job: points, mean / max / min instructions per point, max/mean, where the max
  * occurs (k, line or circle j, index; line -1 = a link point), and the same figures by
@@ -17,7 +17,7 @@
  *   body   a point of a line (circle) that is not its first in travel order
  *   start  the first point of a line (circle) in travel order (k = 0 included)
  *   link   a link move point between two lines (circles)
- * and, outside the stream, the cost of toolpath_seek(k) + the next call (the path a
+ * and, outside the stream, the cost of canal_path_seek(k) + the next call (the path a
  * RESUME or a go-back-N retransmit takes) for a few k of the first job.
  * Check per job: max <= MAXPOINT_LIMIT_PCT % of the mean (default 125). The closing
  * line is "maxpoint: N passed, N failed"; the exit status is the failure count.
@@ -28,7 +28,7 @@
 #include "job.h"
 #include "mps2.h"
 #include "semihost.h"
-#include "toolpath.h"
+#include "canal_path.h"
 
 #ifndef MAXPOINT_LIMIT_PCT
 #define MAXPOINT_LIMIT_PCT 125u
@@ -66,8 +66,8 @@ static const struct mp_job jobs[] = {
 #define N_JOBS (sizeof jobs / sizeof jobs[0])
 
 static struct job job;
-static struct toolpath tp;
-static struct toolpath_pt pt;
+static struct canal_path tp;
+static struct raster_pt pt;
 static volatile int32_t sink;
 
 static void print(const char *s)
@@ -129,7 +129,7 @@ static uint32_t ticks_to_insns(uint32_t t0, uint32_t t1)
     return ((t0 - t1) * 40u + 64u) / 128u; /* down-counter; 25 MHz vs 2^7 ns/insn */
 }
 
-static int call_empty(struct toolpath *t, struct toolpath_pt *p)
+static int call_empty(struct canal_path *t, struct raster_pt *p)
 {
     (void)t;
     (void)p;
@@ -138,7 +138,7 @@ static int call_empty(struct toolpath *t, struct toolpath_pt *p)
 }
 
 /* One timed call through a volatile pointer (the same shape for the baseline). */
-static uint32_t timed(int (*volatile fn)(struct toolpath *, struct toolpath_pt *), int *rc)
+static uint32_t timed(int (*volatile fn)(struct canal_path *, struct raster_pt *), int *rc)
 {
     uint32_t t0, t1;
     t0 = MPS2_TIMER0_VALUE;
@@ -216,8 +216,8 @@ static int load(const struct mp_job *mj)
             return -1;
         }
     }
-    if (toolpath_init(&tp, &job.cfg) != CP_OK) {
-        print("  toolpath_init failed\n");
+    if (canal_path_init(&tp, &job.canal, &job.cfg) != CP_OK) {
+        print("  canal_path_init failed\n");
         return -1;
     }
     return 0;
@@ -237,7 +237,7 @@ int main(void)
         uint32_t v = timed(call_empty, &r);
         base = v < base ? v : base;
     }
-    print("maxpoint: instructions per toolpath_next() call, every point of the job, QEMU -icount "
+    print("maxpoint: instructions per canal_path_next() call, every point of the job, QEMU -icount "
           "shift=7 (empty-call baseline ");
     print_u32(base);
     print(" subtracted); limit max <= ");
@@ -269,7 +269,7 @@ int main(void)
         {
             int16_t prev_line = -2;
             for (;;) {
-                uint32_t v = timed(toolpath_next, &r);
+                uint32_t v = timed(canal_path_next, &r);
                 if (r != CP_OK) {
                     break;
                 }
@@ -286,19 +286,19 @@ int main(void)
                 k++;
             }
         }
-        ok = r == CP_ERR_DONE && k == toolpath_count(&tp) && all.n > 0u;
+        ok = r == CP_ERR_DONE && k == canal_path_count(&tp) && all.n > 0u;
         ratio = all.n /* max/mean x 1000 */ ? (uint32_t)(((uint64_t)all.max * 1000u * all.n + all.sum / 2u) / all.sum) : 0u;
         ok = ok && (uint64_t)all.max * 100u * all.n <= (uint64_t)MAXPOINT_LIMIT_PCT * all.sum;
         print("  points ");
         print_u32(all.n);
         print(" of ");
-        print_u32(toolpath_count(&tp));
+        print_u32(canal_path_count(&tp));
         print(" (n ");
-        print_u32(tp.n);
+        print_u32(tp.head.n);
         print(", steps ");
-        print_u32(tp.steps);
+        print_u32(tp.head.steps);
         print(", link ");
-        print_u32(tp.link);
+        print_u32(tp.head.link);
         print(", substeps ");
         print_u32(tp.substeps);
         print(")\n  all    mean ");
@@ -334,10 +334,10 @@ int main(void)
             size_t s;
             print("  seek+next (RESUME / go-back-N path, outside the stream):");
             for (s = 0; s < sizeof at / sizeof at[0]; s++) {
-                uint32_t t0, t1, kk = (uint32_t)((uint64_t)toolpath_count(&tp) * at[s] / 1000u);
+                uint32_t t0, t1, kk = (uint32_t)((uint64_t)canal_path_count(&tp) * at[s] / 1000u);
                 t0 = MPS2_TIMER0_VALUE;
-                r = toolpath_seek(&tp, kk);
-                r |= toolpath_next(&tp, &pt);
+                r = canal_path_seek(&tp, kk);
+                r |= canal_path_next(&tp, &pt);
                 t1 = MPS2_TIMER0_VALUE;
                 print(" k ");
                 print_u32(kk);

@@ -8,8 +8,10 @@
 #include "cp_math.h"
 
 /* Number of used parameters per kind. */
-static const uint8_t curve_nparams[4] = {4u, 5u, 6u, 8u};
-static const uint8_t radius_nparams[4] = {1u, 2u, 3u, 4u};
+static const uint8_t curve_nparams[4] = {
+    [CANAL_LINE] = 4u, [CANAL_ARC] = 5u, [CANAL_ELLIPSE] = 6u, [CANAL_BEZIER] = 8u};
+static const uint8_t radius_nparams[4] = {
+    [CANAL_R_CONST] = 1u, [CANAL_R_LINEAR] = 2u, [CANAL_R_COS] = 3u, [CANAL_R_CUBIC] = 4u};
 
 /* Grid steps of |C'|^2 used to bracket the minimum speed of a Bezier, and the zoom
  * rounds inside the bracket (fixed counts; bezier_min_speed). */
@@ -158,59 +160,59 @@ static cp_real bezier_min_speed(const struct canal *p)
     return cp_sqrt(best);
 }
 
-int canal_init(struct canal *c, const struct canal_cfg *cfg)
+/* The first of an ARC's or ELLIPSE's parameters that is an angle (its last two); 8 (none)
+ * for the other kinds. */
+static unsigned first_angle(uint8_t curve)
 {
-    unsigned i, nc, nr, na;
-    cp_real size = CP_R(0.0);
+    return (curve == CANAL_ARC || curve == CANAL_ELLIPSE) ? curve_nparams[curve] - 2u : 8u;
+}
+
+/* canal_init, step 1: copy the used parameters into c (the unused ones 0) and check them,
+ * curve then radius law: every used one finite (CP_ERR_NONFINITE, which wins over a range
+ * error anywhere), then in range (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, the angles of an
+ * ARC/ELLIPSE |v| <= 4 pi, the k of a COS law |k| <= CANAL_K_MAX. */
+static int copy_params(struct canal *c, const struct canal_cfg *cfg)
+{
+    unsigned nc = curve_nparams[cfg->curve], nr = radius_nparams[cfg->radius];
+    unsigned na = first_angle(cfg->curve), i;
     int err = CP_OK;
-    if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
-        return CP_ERR_INVAL;
-    }
-    nc = curve_nparams[cfg->curve];
-    nr = radius_nparams[cfg->radius];
-    /* the angles of an ARC/ELLIPSE are its last two parameters */
-    na = (cfg->curve == CANAL_ARC || cfg->curve == CANAL_ELLIPSE) ? nc - 2u : 8u;
-    /* parameter i < 8 is cp[i], 8 + i is rp[i]: copy (unused ones 0), then every used one
-     * finite (CP_ERR_NONFINITE wins over a range error anywhere), then in range */
-    for (i = 0; i < 12u; i++) {
-        cp_real v = CP_R(0.0), lim = CANAL_COORD_MAX;
-        if (i < 8u) {
-            if (i < nc) {
-                v = cfg->cp[i];
-            }
-            if (i >= na) {
-                lim = CP_R(2.0) * CP_TWO_PI;
-            }
-            c->cp[i] = v;
-        } else {
-            if (i - 8u < nr) {
-                v = cfg->rp[i - 8u];
-            }
-            if (i == 10u && cfg->radius == CANAL_R_COS) {
-                lim = CANAL_K_MAX;
-            }
-            c->rp[i - 8u] = v;
-        }
-        if (!cp_isfinite(v)) {
+    for (i = 0; i < 8u; i++) {
+        cp_real v = i < nc ? cfg->cp[i] : CP_R(0.0);
+        c->cp[i] = v;
+        if (!cp_finite(v)) {
             return CP_ERR_NONFINITE;
         }
-        if (cp_fabs(v) > lim) {
+        if (cp_fabs(v) > (i >= na ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX)) {
             err = CP_ERR_RANGE;
         }
     }
-    c->curve = cfg->curve;
-    c->radius = cfg->radius;
-    c->dir = 1;
-    if (err != CP_OK) {
-        return err;
+    for (i = 0; i < 4u; i++) {
+        cp_real v = i < nr ? cfg->rp[i] : CP_R(0.0);
+        c->rp[i] = v;
+        if (!cp_finite(v)) {
+            return CP_ERR_NONFINITE;
+        }
+        if (cp_fabs(v) > (i == 2u && cfg->radius == CANAL_R_COS ? CANAL_K_MAX : CANAL_COORD_MAX)) {
+            err = CP_ERR_RANGE;
+        }
     }
+    return err;
+}
+
+/* canal_init, step 2: the parameter interval [t0, t1] of the curve (and dir), its least
+ * speed cmin (not for a BEZIER: bezier_min_speed, once the fields the jet reads are set)
+ * and its size (the scale of the degeneracy test) in *size. Errors: CP_ERR_RANGE (ARC or
+ * ELLIPSE radius <= 0, sweep above CANAL_SPAN_MAX), CP_ERR_EMPTY (equal angles). */
+static int curve_interval(struct canal *c, cp_real *size)
+{
+    unsigned i, na = first_angle(c->curve);
     switch (c->curve) {
     case CANAL_LINE: {
         cp_real dx = c->cp[2] - c->cp[0], dy = c->cp[3] - c->cp[1];
         c->t0 = CP_R(0.0);
         c->t1 = CP_R(1.0);
         c->cmin = cp_sqrt(dx * dx + dy * dy);
-        size = c->cmin;
+        *size = c->cmin;
         break;
     }
     case CANAL_ARC:
@@ -222,7 +224,7 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
             return CP_ERR_RANGE;
         }
         c->cmin = ra < rb ? ra : rb;
-        size = ra > rb ? ra : rb;
+        *size = ra > rb ? ra : rb;
         if (a0 == a1) {
             return CP_ERR_EMPTY;
         }
@@ -243,14 +245,31 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
             widen(bx, c->cp[2u * i]);
             widen(by, c->cp[2u * i + 1u]);
         }
-        size = (bx[1] - bx[0]) > (by[1] - by[0]) ? (bx[1] - bx[0]) : (by[1] - by[0]);
+        *size = (bx[1] - bx[0]) > (by[1] - by[0]) ? (bx[1] - bx[0]) : (by[1] - by[0]);
         c->t0 = CP_R(0.0);
         c->t1 = CP_R(1.0);
         break; /* cmin below, once the fields the jet reads are set */
     }
     }
-    if (!(c->t1 > c->t0)) {
-        return CP_ERR_EMPTY;
+    return c->t1 > c->t0 ? CP_OK : CP_ERR_EMPTY;
+}
+
+int canal_init(struct canal *c, const struct canal_cfg *cfg)
+{
+    cp_real size = CP_R(0.0);
+    int err;
+    if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
+        return CP_ERR_INVAL;
+    }
+    err = copy_params(c, cfg);
+    c->curve = cfg->curve;
+    c->radius = cfg->radius;
+    c->dir = 1;
+    if (err == CP_OK) {
+        err = curve_interval(c, &size);
+    }
+    if (err != CP_OK) {
+        return err;
     }
     c->inv_span = CP_R(1.0) / (c->t1 - c->t0);
     c->kappa_const = (uint8_t)(c->curve == CANAL_ARC || c->curve == CANAL_LINE);

@@ -145,7 +145,7 @@ cp_real canal_g(const struct canal_jet *j);
 void canal_point(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off,
                  struct canal_point *out);
 
-/* The body of canal_point, for a caller's hot loop (toolpath_next inlines it; the
+/* The body of canal_point, for a caller's hot loop (canal_path_next inlines it; the
  * two give the same bits). Stereographic form (MATH-canal §5.2): 11 multiplications,
  * 1 division, no square root. */
 static CP_ALWAYS_INLINE void canal_point_inline(const struct canal_frame *f, cp_real h, cp_real b,

@@ -1,11 +1,10 @@
 /* channel.c - channel surface from superellipse cross-sections (channel.h).
  * SPDX-License-Identifier: MIT
  *
- * Written for flash: one evaluation path (guide -> row at u, angle -> point at w) serves
- * the init walks and the stream alike; the x, y, z and the a/cos, b/sin halves run as
- * fixed loops over arrays. A struct cp_vec3 and a struct channel_section are read as 3
- * and 12 consecutive reals (static asserts below; a pointer to a struct converted to a
- * pointer to its first member, C99 6.7.2.1).
+ * One evaluation path (guide -> row at u, angle -> point at w) serves the init walks and
+ * the stream alike. Vectors are struct cp_vec3 with cp_math's cp_v3_* operations; the
+ * spline, Hermite and inertia formulas that run over the x, y, z coordinates take them
+ * by index (comp, vec_of), the a/cos, b/sin halves are arrays of 2.
  */
 #include "channel.h"
 #include "cp_math.h"
@@ -13,15 +12,6 @@
 
 /* The five laws along the guide (natural cubic splines, B13). */
 enum { Q_S = 0, Q_N = 1, Q_JI = 2, Q_JII = 3, Q_J12 = 4, NQ = 5 };
-/* Offsets in a section read as 12 reals: a, b, n, centre, x axis, normal. */
-enum { S_C = 3, S_X = 6, S_Z = 9 };
-
-#define VR(v) ((cp_real *)(v))
-#define CVR(v) ((const cp_real *)(v))
-
-CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), vec3_is_3_reals);
-CP_STATIC_ASSERT(sizeof(struct channel_section) == 12u * sizeof(cp_real), section_is_12_reals);
-CP_STATIC_ASSERT(offsetof(struct toolpath_pt, n) == 3u * sizeof(cp_real), pt_p_n_are_6_reals);
 
 #define SAG_MARGIN CP_R(0.8) /* aim the derived step counts at 80 % of the tolerance */
 
@@ -123,40 +113,21 @@ cp_real channel_kj(cp_real n)
 }
 
 /* ---------------------------------------------------------------------------------------
- * Small helpers. fin, dot, cross, sub and norm forward to the shared ones of cp_math.h
- * (one copy in the image; the same operations in the same order). */
-static int fin(cp_real x)
+ * Small helpers. Coordinate k (0 x, 1 y, 2 z) of a vector, for the formulas written per
+ * coordinate. */
+static cp_real comp(const struct cp_vec3 *v, unsigned k)
 {
-    return cp_finite(x);
+    return k == 0u ? v->x : (k == 1u ? v->y : v->z);
 }
 
-/* Vectors (3 reals). */
-static cp_real dot(const cp_real *a, const cp_real *b)
+/* The vector of coordinates a[0], a[1], a[2]. */
+static struct cp_vec3 vec_of(const cp_real *a)
 {
-    return cp_v3_dot(a, b);
-}
-
-/* o = a x b. */
-static void cross(const cp_real *a, const cp_real *b, cp_real *o)
-{
-    cp_v3_cross(a, b, o);
-}
-
-/* o = a - b. */
-static void sub(const cp_real *a, const cp_real *b, cp_real *o)
-{
-    cp_v3_sub(a, b, o);
-}
-
-static cp_real norm(const cp_real *a)
-{
-    return cp_v3_norm(a);
-}
-
-/* v /= |v|; returns |v|. */
-static cp_real unit(cp_real *v)
-{
-    return cp_v3_unit(v);
+    struct cp_vec3 v;
+    v.x = a[0];
+    v.y = a[1];
+    v.z = a[2];
+    return v;
 }
 
 /* a + k pi nearest ref (unwrapping mod pi). */
@@ -173,7 +144,7 @@ void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_rea
                    uint8_t order)
 {
     static const uint8_t ax[2][3] = {{2u, 0u, 1u}, {0u, 1u, 2u}}, nx[3] = {1u, 2u, 0u};
-    cp_real ang[3], *v = VR(s) + S_X; /* rows 0 (x, v[0..2]) and 2 (z, v[3..5]) */
+    cp_real ang[3], v[6]; /* rows 0 (x, v[0..2]) and 2 (z, v[3..5]) of R */
     unsigned r, k, o = order == CHANNEL_ORDER_PRINTED ? 1u : 0u;
     ang[0] = theta;
     ang[1] = phi;
@@ -191,6 +162,8 @@ void channel_euler(struct channel_section *s, cp_real psi, cp_real theta, cp_rea
             v[r + j] = vi * sn + vj * cs;
         }
     }
+    s->x = vec_of(&v[0]);
+    s->z = vec_of(&v[3]);
 }
 
 /* ---------------------------------------------------------------------------------------
@@ -212,12 +185,12 @@ static const cp_real hc[3][5] = {
 static cp_real frame(struct channel_row *r)
 {
     cp_real vn;
-    r->sp = unit(r->t);
-    r->e1[0] = r->t[2];
-    r->e1[1] = CP_R(0.0);
-    r->e1[2] = -r->t[0];
-    vn = unit(r->e1);
-    cross(r->t, r->e1, r->e2);
+    r->sp = cp_v3_unit(&r->t);
+    r->e1.x = r->t.z;
+    r->e1.y = CP_R(0.0);
+    r->e1.z = -r->t.x;
+    vn = cp_v3_unit(&r->e1);
+    cp_v3_cross(&r->t, &r->e1, &r->e2);
     return vn;
 }
 
@@ -228,8 +201,10 @@ static cp_real frame(struct channel_row *r)
  * Laws: natural cubic splines on [m, m + 1] (exact node values at t = 0). */
 void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
 {
-    const cp_real *s0, *s1, *ac;
-    cp_real l2[3], v[NQ], dv[NQ], kk[4];
+    const struct channel_section *s0, *s1;
+    const cp_real *ac;
+    struct cp_vec3 l2;
+    cp_real lk[3], tk[3], l2k[3], v[NQ], dv[NQ], kk[4];
     cp_real t, tt, vn, w, pp, lp, js, qq, lq, r1, r2, a, b, dd, e, dal;
     unsigned m, k, j, i, fl; /* CHANNEL_ROW_* flags, stored at the end */
     r->u = u;
@@ -244,18 +219,18 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
         m = ch->ns - 2u;
     }
     t = u - (cp_real)m;
-    s0 = CVR(&ch->cfg->s[m]);
-    s1 = s0 + 12;
+    s0 = &ch->cfg->s[m];
+    s1 = &ch->cfg->s[m + 1u];
     ac = ch->acc[m];
     for (k = 0; k < 3u; k++) {
         cp_real in[5], h = CP_R(0.0), d1 = CP_R(0.0), d2 = CP_R(0.0);
-        in[0] = s1[S_C + k] - s0[S_C + k];
-        in[1] = ch->d[m] * s0[S_Z + k];
-        in[2] = ch->d[m + 1u] * s1[S_Z + k];
+        in[0] = comp(&s1->c, k) - comp(&s0->c, k);
+        in[1] = ch->d[m] * comp(&s0->z, k);
+        in[2] = ch->d[m + 1u] * comp(&s1->z, k);
         in[3] = ac[k];
         in[4] = ac[3u + k];
         for (j = 6u; j-- > 0u;) { /* c5 .. c0 */
-            cp_real cj = j == 2u ? CP_R(0.5) * in[3] : (j == 1u ? in[1] : s0[S_C + k]);
+            cp_real cj = j == 2u ? CP_R(0.5) * in[3] : (j == 1u ? in[1] : comp(&s0->c, k));
             if (j >= 3u) {
                 cj = CP_R(0.0);
                 for (i = 0; i < 5u; i++) {
@@ -266,16 +241,19 @@ void channel_row(const struct channel *ch, cp_real u, struct channel_row *r)
             d1 = d1 * t + h;
             h = h * t + cj;
         }
-        r->l[k] = h;
-        r->t[k] = d1;
-        l2[k] = CP_R(2.0) * d2;
+        lk[k] = h;
+        tk[k] = d1;
+        l2k[k] = CP_R(2.0) * d2;
     }
+    r->l = vec_of(lk);
+    r->t = vec_of(tk);
+    l2 = vec_of(l2k);
     vn = frame(r);
     fl = vn > CHANNEL_FRAME_TOL ? 0u : CHANNEL_ROW_FRAME;
     for (k = 0; k < 2u; k++) {
-        r->k[k] = dot(l2, k ? r->e2 : r->e1) / (r->sp * r->sp);
+        r->k[k] = cp_v3_dot(&l2, k ? &r->e2 : &r->e1) / (r->sp * r->sp);
     }
-    w = (r->e2[0] * l2[2] - r->e2[2] * l2[0]) / (r->sp * vn);
+    w = (r->e2.x * l2.z - r->e2.z * l2.x) / (r->sp * vn);
     tt = CP_R(1.0) - t;
     for (k = 0; k < NQ; k++) {
         cp_real ya = ch->y[k][m], yb = ch->y[k][m + 1u];
@@ -343,14 +321,13 @@ static void rot(const struct channel_row *r, const cp_real *v, cp_real *o)
     o[1] = v[0] * r->sa + v[1] * r->ca;
 }
 
-/* o = f v + x e1 + y e2. */
-static CP_NOINLINE void comb(const struct channel_row *r, cp_real *o, const cp_real *v, cp_real f,
-                             cp_real x, cp_real y)
+/* o = f v + x e1 + y e2 (the row's frame), per component summed left to right. */
+static CP_NOINLINE void comb(const struct channel_row *r, struct cp_vec3 *o,
+                             const struct cp_vec3 *v, cp_real f, cp_real x, cp_real y)
 {
-    unsigned k;
-    for (k = 0; k < 3u; k++) {
-        o[k] = f * v[k] + x * r->e1[k] + y * r->e2[k];
-    }
+    o->x = f * v->x + x * r->e1.x + y * r->e2.x;
+    o->y = f * v->y + x * r->e1.y + y * r->e2.y;
+    o->z = f * v->z + x * r->e1.z + y * r->e2.z;
 }
 
 /* Point and normal (B.2 step 7). In the section axes (index 0: a and cos w, 1: b and
@@ -366,7 +343,8 @@ static CP_NOINLINE void comb(const struct channel_row *r, cp_real *o, const cp_r
 void channel_point(const struct channel_row *r, cp_real w, struct cp_vec3 *p, struct cp_vec3 *nrm,
                    cp_real *g)
 {
-    cp_real cs[2], x[2], v[2], mm[3], xp[2], m[2], gg, sm;
+    cp_real cs[2], x[2], v[2], mm[2], xp[2], m[2], gg, sm;
+    struct cp_vec3 mv;
     unsigned i;
     cp_sincos(w, &cs[1], &cs[0]);
     for (i = 0; i < 2u; i++) {
@@ -381,15 +359,19 @@ void channel_point(const struct channel_row *r, cp_real w, struct cp_vec3 *p, st
     }
     v[0] -= r->wr * x[1];
     v[1] += r->wr * x[0];
-    mm[2] = CP_R(0.0);
-    (void)unit(mm);
+    mv.x = mm[0];
+    mv.y = mm[1];
+    mv.z = CP_R(0.0);
+    (void)cp_v3_unit(&mv);
+    mm[0] = mv.x;
+    mm[1] = mv.y;
     sm = mm[0] * v[0] + mm[1] * v[1];
     rot(r, x, xp);
     rot(r, mm, m);
     gg = CP_R(1.0) - r->k[0] * xp[0] - r->k[1] * xp[1];
-    comb(r, VR(p), r->l, CP_R(1.0), xp[0], xp[1]);
-    comb(r, VR(nrm), r->t, -sm, gg * r->sp * m[0], gg * r->sp * m[1]);
-    (void)unit(VR(nrm));
+    comb(r, p, &r->l, CP_R(1.0), xp[0], xp[1]);
+    comb(r, nrm, &r->t, -sm, gg * r->sp * m[0], gg * r->sp * m[1]);
+    (void)cp_v3_unit(nrm);
     *g = gg;
 }
 
@@ -397,14 +379,22 @@ void channel_point(const struct channel_row *r, cp_real w, struct cp_vec3 *p, st
  * Init. */
 int channel_section_check(const struct channel_section *s)
 {
-    const cp_real *v = CVR(s);
-    unsigned i;
-    for (i = 0; i < 12u; i++) {
-        if (!fin(v[i])) {
-            return CP_ERR_NONFINITE;
-        }
-        if (i >= 3u && cp_fabs(v[i]) > CHANNEL_COORD_MAX) {
-            return CP_ERR_RANGE;
+    const struct cp_vec3 *vec[3] = {&s->c, &s->x, &s->z};
+    unsigned i, k;
+    /* every number in order (a, b, n, centre, x, z): the first non-finite one, or
+     * coordinate out of range, gives the code */
+    if (!cp_finite(s->a) || !cp_finite(s->b) || !cp_finite(s->n)) {
+        return CP_ERR_NONFINITE;
+    }
+    for (i = 0; i < 3u; i++) {
+        for (k = 0; k < 3u; k++) {
+            cp_real x = comp(vec[i], k);
+            if (!cp_finite(x)) {
+                return CP_ERR_NONFINITE;
+            }
+            if (cp_fabs(x) > CHANNEL_COORD_MAX) {
+                return CP_ERR_RANGE;
+            }
         }
     }
     if (!(s->a > CP_R(0.0)) || !(s->b > CP_R(0.0))) {
@@ -417,7 +407,7 @@ int channel_section_check(const struct channel_section *s)
         return CP_ERR_RANGE;
     }
     for (i = 0; i < 3u; i++) { /* x.x = 1, z.z = 1, x.z = 0 */
-        cp_real d = dot(v + (i == 1u ? S_Z : S_X), v + (i == 0u ? S_X : S_Z));
+        cp_real d = cp_v3_dot(i == 1u ? &s->z : &s->x, i == 0u ? &s->x : &s->z);
         if (cp_fabs(d - (i < 2u ? CP_R(1.0) : CP_R(0.0))) > CHANNEL_AXES_TOL) {
             return CP_ERR_RANGE;
         }
@@ -431,7 +421,8 @@ int channel_section_check(const struct channel_section *s)
 int channel_init(struct channel *ch, const struct channel_cfg *cfg)
 {
     struct channel_row r;
-    cp_real cq[CP_MAX_SECTIONS], cv[CP_MAX_SECTIONS][3], cl[CP_MAX_SECTIONS], kk[4];
+    struct cp_vec3 cv[CP_MAX_SECTIONS];
+    cp_real cq[CP_MAX_SECTIONS], cl[CP_MAX_SECTIONS], kk[4];
     unsigned i, e, k, q, ns;
     int err;
     ch->ns = 0u;
@@ -457,13 +448,13 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
     /* chord e = O_e - O_(e-1), 1 <= e < N: coincident centres, a section plane containing
      * the chord (either end) */
     for (e = 1u; e < ns; e++) {
-        sub(CVR(&cfg->s[e].c), CVR(&cfg->s[e - 1u].c), cv[e]);
-        cl[e] = norm(cv[e]);
+        cp_v3_sub(&cfg->s[e].c, &cfg->s[e - 1u].c, &cv[e]);
+        cl[e] = cp_v3_norm(&cv[e]);
         if (!(cl[e] > CP_R(1.0e-6) * (cfg->s[e - 1u].a + cfg->s[e - 1u].b))) {
             return CP_ERR_COINCIDENT;
         }
         for (i = e - 1u; i <= e; i++) {
-            if (cp_fabs(dot(CVR(&cfg->s[i].z), cv[e])) < CHANNEL_PLANE_TOL * cl[e]) {
+            if (cp_fabs(cp_v3_dot(&cfg->s[i].z, &cv[e])) < CHANNEL_PLANE_TOL * cl[e]) {
                 return CP_ERR_SECTION_PLANE;
             }
         }
@@ -475,14 +466,16 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
      * swapped (a along y, alpha + pi/2). Node data (step 5). */
     for (i = 0; i < ns; i++) {
         const struct channel_section *s = &cfg->s[i];
-        const cp_real *sv = CVR(s);
-        const cp_real *xa = sv + S_X; /* the a axis */
-        cp_real a = s->a, b = s->b, ya[3], jx, jy, sn, cs, t;
+        const struct cp_vec3 *xa = &s->x; /* the a axis */
+        struct cp_vec3 ya;
+        cp_real a = s->a, b = s->b, jx, jy, sn, cs, t;
         unsigned lo = i > 0u ? i : 1u, hi = i + 1u < ns ? i + 1u : i;
         t = CP_R(0.5) * (cl[lo] + cl[hi]);
-        ch->d[i] = dot(sv + S_Z, cv[hi]) > CP_R(0.0) ? t : -t;
+        ch->d[i] = cp_v3_dot(&s->z, &cv[hi]) > CP_R(0.0) ? t : -t;
+        r.t.x = ch->d[i] * s->z.x;
+        r.t.y = ch->d[i] * s->z.y;
+        r.t.z = ch->d[i] * s->z.z;
         for (k = 0; k < 3u; k++) {
-            r.t[k] = ch->d[i] * sv[S_Z + k];
             ch->acc[i][k] = CP_R(0.0);
         }
         /* Node second derivatives A_i (B7) = mean of the one-sided cubic-Hermite values: on
@@ -493,10 +486,10 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
         for (q = 0; q < 2u && i > 0u; q++) {
             unsigned nd = i - 1u + q;
             cp_real fa = q ? CP_R(2.0) : CP_R(4.0), sg = q ? CP_R(-0.5) : CP_R(0.5);
-            const cp_real *za = sv - 12; /* the z axis of section i - 1 (12 reals before) */
+            const struct cp_vec3 *za = &cfg->s[i - 1u].z; /* the z axis of section i - 1 */
             for (k = 0; k < 3u; k++) {
-                cp_real h = sg * (CP_R(6.0) * cv[i][k] - fa * ch->d[i - 1u] * za[S_Z + k] -
-                                  (CP_R(6.0) - fa) * ch->d[i] * sv[S_Z + k]);
+                cp_real h = sg * (CP_R(6.0) * comp(&cv[i], k) - fa * ch->d[i - 1u] * comp(za, k) -
+                                  (CP_R(6.0) - fa) * ch->d[i] * comp(&s->z, k));
                 if (nd == 0u || nd + 1u == ns) {
                     h += h; /* exact: the same sum as adding h twice to 0 */
                 }
@@ -507,12 +500,12 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
             return CP_ERR_FRAME_REF;
         }
         if (a < b) {
-            cross(sv + S_Z, sv + S_X, ya); /* y = z x x */
-            xa = ya;
+            cp_v3_cross(&s->z, &s->x, &ya); /* y = z x x */
+            xa = &ya;
             a = s->b;
             b = s->a;
         }
-        t = cp_atan2(dot(xa, r.e2), dot(xa, r.e1));
+        t = cp_atan2(cp_v3_dot(xa, &r.e2), cp_v3_dot(xa, &r.e1));
         ch->al[i] = i > 0u ? near(t, ch->al[i - 1u]) : t;
         kconst(s->n, kk);
         jx = a * b * b * b * kk[1];
@@ -550,16 +543,15 @@ int channel_init(struct channel *ch, const struct channel_cfg *cfg)
 int channel_wire_inertia(const struct channel_section *s, uint32_t m, cp_real *len,
                          struct cp_vec3 *centroid, cp_real lam[3], struct cp_vec3 *axis3)
 {
-    const cp_real *sv = CVR(s);
-    cp_real mom[3], sec[3][3], jt[3][3], pv[2][3], ya[3], tot = CP_R(0.0), q = CP_R(2.0) / s->n;
+    struct cp_vec3 ya;
+    cp_real mom[3], sec[3][3], jt[3][3], pv[2][3], tot = CP_R(0.0), q = CP_R(2.0) / s->n;
     cp_real i1, i2, i3, pp, qq, rr, ph, sn, cs, best = CP_R(-1.0);
-    cp_real *ax = VR(axis3), *ce = VR(centroid);
     unsigned i, j, k;
     uint32_t e;
     if (m < 8u || m > 1000000u) {
         return CP_ERR_RANGE;
     }
-    cross(sv + S_Z, sv + S_X, ya);
+    cp_v3_cross(&s->z, &s->x, &ya);
     for (i = 0; i < 3u; i++) {
         mom[i] = CP_R(0.0);
         for (j = 0; j < 3u; j++) {
@@ -574,15 +566,17 @@ int channel_wire_inertia(const struct channel_section *s, uint32_t m, cp_real *l
         x = c < CP_R(0.0) ? -x : x;
         y = sw < CP_R(0.0) ? -y : y;
         for (i = 0; i < 3u; i++) {
-            pv[e & 1u][i] = x * sv[S_X + i] + y * ya[i];
+            pv[e & 1u][i] = x * comp(&s->x, i) + y * comp(&ya, i);
         }
         if (e > 0u) {
             const cp_real *pa = pv[(e - 1u) & 1u], *pb = pv[e & 1u];
-            cp_real l, dl[3];
+            cp_real l, d[3];
+            struct cp_vec3 dl;
             for (i = 0; i < 3u; i++) {
-                dl[i] = pb[i] - pa[i];
+                d[i] = pb[i] - pa[i];
             }
-            l = norm(dl);
+            dl = vec_of(d);
+            l = cp_v3_norm(&dl);
             tot += l;
             for (i = 0; i < 3u; i++) {
                 mom[i] += l * CP_R(0.5) * (pa[i] + pb[i]);
@@ -628,27 +622,30 @@ int channel_wire_inertia(const struct channel_section *s, uint32_t m, cp_real *l
     lam[2] = sn;
     /* axis of lam[2]: the largest cross product of two rows of J - lam[2] I */
     for (k = 0; k < 3u; k++) {
-        cp_real ra[3], rb[3], cx[3];
+        cp_real a[3], b[3];
+        struct cp_vec3 ra, rb, cx;
         i = k;
         j = (k + 1u) % 3u;
         for (e = 0; e < 3u; e++) {
-            ra[e] = jt[i][e] - (i == e ? lam[2] : CP_R(0.0));
-            rb[e] = jt[j][e] - (j == e ? lam[2] : CP_R(0.0));
+            a[e] = jt[i][e] - (i == e ? lam[2] : CP_R(0.0));
+            b[e] = jt[j][e] - (j == e ? lam[2] : CP_R(0.0));
         }
-        cross(ra, rb, cx);
-        cs = norm(cx);
+        ra = vec_of(a);
+        rb = vec_of(b);
+        cp_v3_cross(&ra, &rb, &cx);
+        cs = cp_v3_norm(&cx);
         if (cs > best) {
             best = cs;
-            for (e = 0; e < 3u; e++) {
-                ax[e] = cx[e];
-            }
+            *axis3 = cx;
         }
     }
-    cs = (dot(ax, sv + S_Z) < CP_R(0.0) ? CP_R(-1.0) : CP_R(1.0)) / best;
-    for (i = 0; i < 3u; i++) {
-        ax[i] *= cs;
-        ce[i] = sv[S_C + i] + mom[i];
-    }
+    cs = (cp_v3_dot(axis3, &s->z) < CP_R(0.0) ? CP_R(-1.0) : CP_R(1.0)) / best;
+    axis3->x *= cs;
+    axis3->y *= cs;
+    axis3->z *= cs;
+    centroid->x = s->c.x + mom[0];
+    centroid->y = s->c.y + mom[1];
+    centroid->z = s->c.z + mom[2];
     *len = tot;
     return CP_OK;
 }
@@ -670,21 +667,20 @@ static CP_NOINLINE cp_real frac(const struct channel_path *cp, unsigned c, uint3
 /* Point k: output position and normal, t, line (-1: a link point), index in pt; surface
  * point s; through the row cache (key: u). Checks the row and the point: CP_OK,
  * CP_ERR_FRAME_REF, CP_ERR_AREA_LAW, CP_ERR_NUMERIC (non-finite), CP_ERR_FOLD (g <= 0). */
-static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struct cp_vec3 *s)
+static int at(struct channel_path *cp, uint32_t k, struct raster_pt *pt, struct cp_vec3 *s)
 {
-    cp_real x[2], g, g2 = CP_R(0.0), *p = VR(&pt->p);
-    const cp_real *n = CVR(&pt->n), *sv = CVR(s);
+    cp_real x[2], g;
     struct raster_at ra;
-    uint32_t den = cp->steps;
-    unsigned al = cp->mode, ac = al ^ 1u, c; /* TOOLPATH_LINES = 0: along u */
-    raster_locate(k, cp->steps, cp->link, &ra);
+    uint32_t den = cp->head.steps;
+    unsigned al = cp->head.mode, ac = al ^ 1u; /* RASTER_LINES = 0: along u */
+    raster_locate(k, cp->head.steps, cp->head.link, &ra);
     if (ra.a != 0u) { /* a link: where line/ring j ends, the exact end of the range */
-        den = (uint32_t)cp->link + 1u;
+        den = (uint32_t)cp->head.link + 1u;
         x[al] = (ra.j & 1u) ? cp->lo[al] : cp->hi[al];
     } else {
         x[al] = frac(cp, al, ra.i, den);
     }
-    x[ac] = frac(cp, ac, ra.j * den + ra.a, ((uint32_t)cp->n - 1u) * den);
+    x[ac] = frac(cp, ac, ra.j * den + ra.a, ((uint32_t)cp->head.n - 1u) * den);
     pt->line = (int16_t)ra.line;
     pt->index = (uint16_t)ra.index;
     pt->t = x[0];
@@ -692,10 +688,11 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
         channel_row(&cp->ch, x[0], &cp->row);
     }
     channel_point(&cp->row, x[1], s, &pt->n, &g);
-    for (c = 0; c < 3u; c++) {
-        p[c] = sv[c] - cp->tool_r * n[c]; /* ball centre inside the duct (0 with OUT_SURFACE) */
-    }
-    if (cp->output == TOOLPATH_OUT_TIP) {
+    /* ball centre inside the duct (0 with OUT_SURFACE) */
+    pt->p.x = s->x - cp->tool_r * pt->n.x;
+    pt->p.y = s->y - cp->tool_r * pt->n.y;
+    pt->p.z = s->z - cp->tool_r * pt->n.z;
+    if (cp->output == RASTER_OUT_TIP) {
         pt->p.z -= cp->tool_r;
     }
     if (cp->row.flags & CHANNEL_ROW_FRAME) {
@@ -704,10 +701,7 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
     if (cp->row.flags & CHANNEL_ROW_BAD_LAW) {
         return CP_ERR_AREA_LAW;
     }
-    for (c = 0; c < 6u; c++) { /* p then n: 6 consecutive reals (static assert below) */
-        g2 += p[c];
-    }
-    if (!fin(g2)) {
+    if (!cp_finite(pt->p.x + pt->p.y + pt->p.z + pt->n.x + pt->n.y + pt->n.z)) {
         return CP_ERR_NUMERIC;
     }
     return g > CP_R(0.0) ? CP_OK : CP_ERR_FOLD;
@@ -717,9 +711,9 @@ static int at(struct channel_path *cp, uint32_t k, struct toolpath_pt *pt, struc
  * n (steps + 1) + (n - 1) link. */
 static CP_NOINLINE uint32_t set_raster(struct channel_path *cp, uint32_t steps, uint32_t link)
 {
-    cp->steps = steps;
-    cp->link = (uint16_t)link;
-    return raster_count(cp->n, steps, link);
+    cp->head.steps = steps;
+    cp->head.link = (uint16_t)link;
+    return raster_count(cp->head.n, steps, link);
 }
 
 /* Walk the whole raster with seg[0] segments per line/ring and seg[1] per link, doubled
@@ -731,12 +725,10 @@ static CP_NOINLINE uint32_t set_raster(struct channel_path *cp, uint32_t steps, 
  * clamps. Work: the doubled raster's points. */
 static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_real *sag)
 {
-    struct toolpath_pt pt;
-    struct cp_vec3 sv;
-    cp_real sp[3], op[2][3], dm[3], dc[3], cx[3];
-    const cp_real *s = CVR(&sv), *p = CVR(&pt.p);
+    struct raster_pt pt;
+    struct cp_vec3 sv, sp, op[2], dm, dc, cx;
     uint32_t k, cnt;
-    unsigned c, kind = 0u;
+    unsigned kind = 0u;
     cnt = set_raster(cp, 2u * seg[0], 2u * seg[1] - 1u); /* steps up to 2 CP_MAX_STEPS: uint32_t */
     sag[0] = sag[1] = CP_R(0.0);
     for (k = 0; k < cnt; k++) {
@@ -749,10 +741,10 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
         if ((cp->row.flags & CHANNEL_ROW_CLAMP) && cp->ch.clamps < 0xFFFFu) {
             cp->ch.clamps++;
         }
-        if (k > 0u && cp->output != TOOLPATH_OUT_SURFACE) {
-            sub(s, sp, dm);                /* surface step */
-            sub(p, op[(k - 1u) & 1u], dc); /* output step */
-            if (!(dot(dm, dc) > CP_R(0.0))) {
+        if (k > 0u && cp->output != RASTER_OUT_SURFACE) {
+            cp_v3_sub(&sv, &sp, &dm);                   /* surface step */
+            cp_v3_sub(&pt.p, &op[(k - 1u) & 1u], &dc); /* output step */
+            if (!(cp_v3_dot(&dm, &dc) > CP_R(0.0))) {
                 return CP_ERR_TOOL;
             }
         }
@@ -761,17 +753,15 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
              * midpoint: |cos w|^(2/n) spaces the points very unevenly near the section axes,
              * which is no deviation from the chord) */
             cp_real d, lc;
-            sub(op[1], op[0], dm);
-            sub(p, op[0], dc);
-            cross(dm, dc, cx);
-            lc = norm(dc);
-            d = lc > CP_R(0.0) ? norm(cx) / lc : norm(dm);
+            cp_v3_sub(&op[1], &op[0], &dm);
+            cp_v3_sub(&pt.p, &op[0], &dc);
+            cp_v3_cross(&dm, &dc, &cx);
+            lc = cp_v3_norm(&dc);
+            d = lc > CP_R(0.0) ? cp_v3_norm(&cx) / lc : cp_v3_norm(&dm);
             sag[prev] = d > sag[prev] ? d : sag[prev];
         }
-        for (c = 0; c < 3u; c++) {
-            sp[c] = s[c];
-            op[k & 1u][c] = p[c];
-        }
+        sp = sv;
+        op[k & 1u] = pt.p;
     }
     return CP_OK;
 }
@@ -780,17 +770,19 @@ static CP_NOINLINE int walk(struct channel_path *cp, const uint32_t *seg, cp_rea
  * from it aimed at SAG_MARGIN tol (up or down, at least 8 / 1), then verified with the
  * sagitta <= tol, each correction at least 1/8 larger, an estimate above the maximum
  * CP_ERR_TOL at once. */
-static const struct raster_rule channel_rule = {SAG_MARGIN, CP_R(1.0), 32u, 1u, 3u, 0u};
+static const struct raster_rule channel_rule = {.aim = SAG_MARGIN, .accept = CP_R(1.0),
+                                                .start = 32u, .pilot = 1u, .grow_shift = 3u,
+                                                .clamp = 0u};
 
 int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
-                      const struct toolpath_cfg *rs)
+                      const struct raster_cfg *rs)
 {
     struct raster_fit fit;
     uint32_t seg[2], round;
     cp_real sag[2];
     int err;
-    cp->count = 0u;
-    cp->k = 0u;
+    cp->head.count = 0u;
+    cp->head.k = 0u;
     err = raster_check(rs, CP_PI);
     if (err == CP_OK && rs->tool_r > CHANNEL_COORD_MAX) {
         err = CP_ERR_TOOL;
@@ -808,8 +800,8 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     cp->hi[0] = (cp_real)(cp->ch.ns - 1u);
     /* the evaluation grid: whole rings (-pi..pi, CHANNEL_GRID_W samples) at CHANNEL_GRID_U
      * rows per segment, walked like a CIRCLES raster (fold, laws, frame, tool) */
-    cp->mode = TOOLPATH_CIRCLES;
-    cp->n = (uint16_t)((cp->ch.ns - 1u) * CHANNEL_GRID_U + 1u);
+    cp->head.mode = RASTER_CIRCLES;
+    cp->head.n = (uint16_t)((cp->ch.ns - 1u) * CHANNEL_GRID_U + 1u);
     cp->lo[1] = -CP_PI;
     cp->hi[1] = CP_PI;
     seg[0] = CHANNEL_GRID_W / 2u;
@@ -818,8 +810,8 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     if (err != CP_OK) {
         return err;
     }
-    cp->mode = rs->mode;
-    cp->n = rs->n;
+    cp->head.mode = rs->mode;
+    cp->head.n = rs->n;
     cp->lo[1] = rs->u0;
     cp->hi[1] = rs->u1;
     /* segments per line (q = 0) and per link (q = 1): given, else for the tolerance by
@@ -836,30 +828,30 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     if (err != CP_OK) {
         return err;
     }
-    cp->count = set_raster(cp, fit.m[0], fit.m[1] - 1u);
+    cp->head.count = set_raster(cp, fit.m[0], fit.m[1] - 1u);
     return CP_OK;
 }
 
 uint32_t channel_path_count(const struct channel_path *cp)
 {
-    return cp->count;
+    return cp->head.count;
 }
 
 int channel_path_seek(struct channel_path *cp, uint32_t k)
 {
-    return raster_seek(&cp->k, cp->count, k);
+    return raster_seek(&cp->head, k);
 }
 
-int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt)
+int channel_path_next(struct channel_path *cp, struct raster_pt *pt)
 {
     struct cp_vec3 s;
     int err;
-    if (cp->k >= cp->count) {
+    if (cp->head.k >= cp->head.count) {
         return CP_ERR_DONE;
     }
-    err = at(cp, cp->k, pt, &s);
+    err = at(cp, cp->head.k, pt, &s);
     if (err == CP_OK) {
-        cp->k++;
+        cp->head.k++;
     }
     return err;
 }

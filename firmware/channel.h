@@ -32,15 +32,15 @@
  * Units: mm and radians. Every function that can fail is an _init; evaluation and
  * iteration after a successful init cannot fail (finiteness is guarded on emission).
  *
- * Iterator (path.h conventions, raster = struct toolpath_cfg):
- *   TOOLPATH_LINES    n lines along the channel at section angles w_j = u0 + j (u1 - u0)/(n-1)
+ * Iterator (path.h conventions, raster = struct raster_cfg):
+ *   RASTER_LINES    n lines along the channel at section angles w_j = u0 + j (u1 - u0)/(n-1)
  *                     (radians, |w| <= pi), each with steps + 1 points at u_i = i (N-1)/steps;
  *                     zigzag (odd lines run u = N-1 .. 0); consecutive lines are linked by
  *                     `link` points on the section ring where they meet (w evenly between).
- *   TOOLPATH_CIRCLES  n section rings at u_c = c (N-1)/(n-1) (n = 1: u = 0), each with steps + 1
+ *   RASTER_CIRCLES  n section rings at u_c = c (N-1)/(n-1) (n = 1: u = 0), each with steps + 1
  *                     points at w_i = u0 + i (u1 - u0)/steps; zigzag (odd rings run u1 .. u0);
  *                     links along the line w = const where they meet (u evenly between).
- *   count = n (steps + 1) + (n - 1) link. toolpath_pt: p = the output position, n = unit
+ *   count = n (steps + 1) + (n - 1) link. raster_pt: p = the output position, n = unit
  *   outward surface normal, t = u, line = j (or -1 on a link), index = i (link: 1..link).
  *   Output: SURFACE P; CENTRE P - r N: a ball tool INSIDE the duct (machining the channel
  *   wall from within, the port/nozzle case; the outside of a core is not offered); TIP the
@@ -49,7 +49,7 @@
 #ifndef CHANNEL_H
 #define CHANNEL_H
 
-#include "toolpath.h"
+#include "canal_path.h"
 
 /* Largest superellipse exponent accepted (n in [1, CHANNEL_N_MAX]). */
 #define CHANNEL_N_MAX CP_R(100.0)
@@ -99,8 +99,8 @@ struct channel_cfg {
  * of ab/dab is the a (cos w) half, 1 the b (sin w) half. */
 struct channel_row {
     cp_real u;                  /* guide parameter, 0..N-1 */
-    cp_real l[3], t[3];         /* guide point (mm), unit tangent tau */
-    cp_real e1[3], e2[3];       /* frame: e1 = unit(e_y x tau), e2 = tau x e1 */
+    struct cp_vec3 l, t;        /* guide point (mm), unit tangent tau */
+    struct cp_vec3 e1, e2;      /* frame: e1 = unit(e_y x tau), e2 = tau x e1 */
     cp_real ab[2];              /* semi-axes a >= b at u, mm */
     cp_real dab[2];             /* a'/a, b'/b (per unit u) */
     cp_real alpha, ca, sa;      /* angle of the a axis from e1 (rad), its cos and sin */
@@ -188,19 +188,18 @@ CP_MUST_CHECK int channel_wire_inertia(const struct channel_section *s, uint32_t
 
 /* The iterator (struct path's union member). */
 struct channel_path {
-    uint8_t mode;           /* enum toolpath_mode: LINES (along u) or CIRCLES (along w) */
-    uint8_t output;         /* enum toolpath_output: SURFACE, CENTRE or TIP */
-    uint16_t n;             /* lines / rings, 1..CP_MAX_LINES */
-    uint16_t link;          /* link points between consecutive lines/rings, 0..CP_MAX_LINK
-                               (init walks: up to 2 CP_MAX_LINK + 1) */
-    uint32_t steps;         /* segments per line/ring (points: steps + 1), 1..CP_MAX_STEPS;
-                               uint32_t: the init walks double it (up to 2 CP_MAX_STEPS) */
-    cp_real lo[2], hi[2];   /* ranges of u (0, N-1) and w (u0, u1, rad) */
-    cp_real tool_r;         /* tool radius (mm) */
-    uint32_t count;         /* points of the whole path (0 before a successful init) */
-    uint32_t k;             /* next point index, 0..count (points emitted so far) */
-    struct channel_row row; /* cached row (row.u = -1: none) */
-    struct channel ch;      /* last: the fields above stay at Thumb's short offsets */
+    struct raster_head head; /* mode, n, steps, link, count, k (raster.h): LINES along u,
+                                CIRCLES (rings) along w; the init walks double steps (up to
+                                2 CP_MAX_STEPS) and link (up to 2 CP_MAX_LINK + 1) */
+    /* the output */
+    uint8_t output;          /* enum raster_output: SURFACE, CENTRE or TIP */
+    cp_real tool_r;          /* tool radius (mm) */
+    /* the raster's coordinates */
+    cp_real lo[2], hi[2];    /* ranges of u (0, N-1) and w (u0, u1, rad) */
+    /* the model */
+    struct channel ch;
+    /* cache of the stream */
+    struct channel_row row;  /* cached row (row.u = -1: none) */
 };
 
 /* Validate the geometry (channel_init) and the raster, walk the evaluation grid (whole
@@ -211,12 +210,12 @@ struct channel_path {
  * emitted ones), all before anything is emitted. Every walked point is checked: laws (S > 0,
  * n >= 1), frame (|e_y x tau| > CHANNEL_FRAME_TOL), sweep regularity g = 1 - k.(P - L) > 0,
  * the tool-centre path not folding back against the surface path, finiteness. raster: mode, output, n (1..CP_MAX_LINES), u0, u1
- * (|u| <= pi; u0 == u1 only with n == 1), steps (0 = from tol), link (TOOLPATH_LINK_AUTO =
+ * (|u| <= pi; u0 == u1 only with n == 1), steps (0 = from tol), link (RASTER_LINK_AUTO =
  * from tol or 1 um), tol, tool_r. The raster is checked first (raster_check, raster.h:
  * INVAL, NONFINITE, RANGE, TOO_MANY, TOOL in that order, then tool_r > CHANNEL_COORD_MAX),
  * then the geometry (channel_init), then the walks. Errors: every channel_init code, plus
  *   CP_ERR_INVAL     raster NULL, mode/output out of range, a tool radius with OUT_SURFACE
- *   CP_ERR_NONFINITE u0, u1, tol or tool_r      CP_ERR_RANGE  as toolpath_init
+ *   CP_ERR_NONFINITE u0, u1, tol or tool_r      CP_ERR_RANGE  as canal_path_init
  *   CP_ERR_TOO_MANY  n, steps above the maxima
  *   CP_ERR_TOOL      tool_r < 0 or tool_r > CHANNEL_COORD_MAX, or the tool-centre path folds
  *                    back (tool radius above the wall's radius of curvature) on a walk (grid
@@ -228,7 +227,7 @@ struct channel_path {
  *   CP_ERR_FOLD, CP_ERR_FRAME_REF  also on the walk
  *   CP_ERR_NUMERIC   a non-finite value on the walk */
 CP_MUST_CHECK int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
-                                    const struct toolpath_cfg *raster);
+                                    const struct raster_cfg *raster);
 
 /* Points of the whole path (0 before a successful init). */
 uint32_t channel_path_count(const struct channel_path *cp);
@@ -236,7 +235,7 @@ uint32_t channel_path_count(const struct channel_path *cp);
 /* Next point: CP_OK, CP_ERR_DONE after the last, or a walk error of the point (CP_ERR_NUMERIC
  * for a non-finite value; the point is not consumed; cannot happen after the init walk,
  * which checked the same (u, w), kept as a guard). */
-int channel_path_next(struct channel_path *cp, struct toolpath_pt *pt);
+int channel_path_next(struct channel_path *cp, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count): the next point is bit for bit the one first
  * yielded at k (every point is computed from (u, w) directly; the row cache is keyed by u).

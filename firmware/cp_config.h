@@ -50,10 +50,10 @@
 #define CP_MAX_LINK 64
 #endif
 
-/* Byte budget of the complete canal toolpath context (struct toolpath), float build
+/* Byte budget of the complete canal iterator context (struct canal_path), float build
  * (the double build may use twice this). */
-#ifndef CP_TOOLPATH_BUDGET
-#define CP_TOOLPATH_BUDGET 256
+#ifndef CP_CANAL_PATH_BUDGET
+#define CP_CANAL_PATH_BUDGET 256
 #endif
 
 /* DRC model (drc.h): most points of a sketched curve (POINT lines). Integer (3-16).

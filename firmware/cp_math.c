@@ -3,14 +3,15 @@
  */
 #include "cp_math.h"
 
-/* The external definitions of the inline 3-vector helpers (C99 6.7.4: one copy for
+/* The external definitions of the inline helpers (C99 6.7.4: one copy for
  * the calls that are not inlined). */
-extern cp_real cp_v3_dot(const cp_real *a, const cp_real *b);
-extern cp_real cp_v3_norm(const cp_real *a);
-extern cp_real cp_v3_unit(cp_real *v);
-extern void cp_v3_sub(const cp_real *a, const cp_real *b, cp_real *o);
-extern void cp_v3_cross(const cp_real *a, const cp_real *b, cp_real *o);
-extern void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const cp_real *b);
+extern cp_real cp_v3_dot(const struct cp_vec3 *a, const struct cp_vec3 *b);
+extern cp_real cp_v3_norm(const struct cp_vec3 *a);
+extern cp_real cp_v3_unit(struct cp_vec3 *v);
+extern void cp_v3_sub(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o);
+extern void cp_v3_cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o);
+extern void cp_v3_comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
+                       const struct cp_vec3 *b);
 extern int cp_finite(cp_real x);
 
 #if CP_REAL_DOUBLE
@@ -208,8 +209,8 @@ cp_real cp_log(cp_real x)
     if (!(x > 0.0f)) {
         return (x - x) / (x - x); /* NaN for x <= 0 and for NaN */
     }
-    if (x - x != x - x) {
-        return x; /* +inf */
+    if (!cp_finite(x)) {
+        return x; /* +inf (x > 0 here) */
     }
     if (x < 1.17549435e-38f) {
         x *= 33554432.0f; /* 2^25: subnormal to normal, exact */

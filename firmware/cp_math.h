@@ -20,7 +20,7 @@
 void cp_sincos(cp_real x, cp_real *s, cp_real *c);
 
 /* The sincos kernel in two stages, so a caller can spread one evaluation over two
- * calls (toolpath.c makes the next line's label over the last two points of a line):
+ * calls (canal_path.c makes the next line's label over the last two points of a line):
  * cp_sincos_stage1 (argument reduction and the sine polynomial) then
  * cp_sincos_stage2 (the cosine polynomial and the quadrant). The pair performs
  * exactly the operations of cp_sincos_kernel on the same float values, so the
@@ -145,69 +145,65 @@ cp_real cp_expm1(cp_real x);
  * libm log. */
 cp_real cp_log(cp_real x);
 
-/* 3-vectors, shared by the surface models (gsr, channel, drc). A vector is 3 consecutive
- * cp_real: a cp_real[3], or a struct cp_vec3 passed as (const cp_real *)&v (a pointer to a
- * structure converted to a pointer to its first member, C99 6.7.2.1; the layout is
- * asserted below). Every result is the plain expression in the order written
- * (-ffp-contract=off), so a caller's bits do not depend on whether it uses these or its
- * own copy. Written out per component (a speed build does not unroll a 3-step loop).
- * C99 inline definitions: a caller may inline them (a speed build does, as it
- * did the modules' own copies) or call the one external definition in cp_math.c (the
- * size-optimised image does: one copy instead of one per module). */
-CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), cp_v3_is_3_reals);
+/* 3-vectors (struct cp_vec3, cp_types.h): the one set of vector operations of the
+ * firmware, used by every surface model. Every result is the plain expression in the
+ * order written (-ffp-contract=off), so the bits do not depend on whether a call is
+ * inlined. C99 inline definitions: a caller may inline them or call the one external
+ * definition in cp_math.c. An output may alias an input (each is formed before it is
+ * stored). */
 
-/* a0 b0 + a1 b1 + a2 b2, summed left to right. */
-inline cp_real cp_v3_dot(const cp_real *a, const cp_real *b)
+/* a.b = ax bx + ay by + az bz, summed left to right. */
+inline cp_real cp_v3_dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    return a->x * b->x + a->y * b->y + a->z * b->z;
 }
 
-/* sqrt(cp_v3_dot(a, a)). */
-inline cp_real cp_v3_norm(const cp_real *a)
+/* |a| = sqrt(cp_v3_dot(a, a)). */
+inline cp_real cp_v3_norm(const struct cp_vec3 *a)
 {
     return cp_sqrt(cp_v3_dot(a, a));
 }
 
-/* o = a - b (o may alias a or b). */
-inline void cp_v3_sub(const cp_real *a, const cp_real *b, cp_real *o)
+/* o = a - b. */
+inline void cp_v3_sub(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
-    o[0] = a[0] - b[0];
-    o[1] = a[1] - b[1];
-    o[2] = a[2] - b[2];
+    o->x = a->x - b->x;
+    o->y = a->y - b->y;
+    o->z = a->z - b->z;
 }
 
-/* o = a x b: o0 = a1 b2 - a2 b1, o1 = a2 b0 - a0 b2, o2 = a0 b1 - a1 b0 (o may alias a
- * or b: the result is formed before it is stored). */
-inline void cp_v3_cross(const cp_real *a, const cp_real *b, cp_real *o)
+/* o = a x b: ox = ay bz - az by, oy = az bx - ax bz, oz = ax by - ay bx. */
+inline void cp_v3_cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
 {
-    cp_real x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-    o[0] = x;
-    o[1] = y;
+    cp_real x = a->y * b->z - a->z * b->y, y = a->z * b->x - a->x * b->z;
+    o->z = a->x * b->y - a->y * b->x;
+    o->x = x;
+    o->y = y;
 }
 
-/* o = p a + q b, each component p a_k + q b_k (o may alias a or b; p = 1 or q = 0 are
- * exact, q = 0 still adds the product 0 b_k). */
-inline void cp_v3_comb(cp_real *o, cp_real p, const cp_real *a, cp_real q, const cp_real *b)
+/* o = p a + q b, each component p a_k + q b_k (p = 1 or q = 0 are exact, q = 0 still adds
+ * the product 0 b_k). */
+inline void cp_v3_comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
+                       const struct cp_vec3 *b)
 {
-    o[0] = p * a[0] + q * b[0];
-    o[1] = p * a[1] + q * b[1];
-    o[2] = p * a[2] + q * b[2];
+    o->x = p * a->x + q * b->x;
+    o->y = p * a->y + q * b->y;
+    o->z = p * a->z + q * b->z;
 }
 
 /* v /= |v| as v * (1 / |v|) (one division); returns |v| (|v| = 0: v becomes NaN, the
  * callers check). Each component: 2 roundings beyond the norm's relative error. */
-inline cp_real cp_v3_unit(cp_real *v)
+inline cp_real cp_v3_unit(struct cp_vec3 *v)
 {
     cp_real l = cp_v3_norm(v), f = CP_R(1.0) / l;
-    v[0] *= f;
-    v[1] *= f;
-    v[2] *= f;
+    v->x *= f;
+    v->y *= f;
+    v->z *= f;
     return l;
 }
 
-/* 1 if x is finite: x - x is 0, and NaN for an infinity or a NaN (cp_isfinite's
- * answer in one comparison). */
+/* 1 if x is finite, 0 for an infinity or a NaN: x - x is 0 exactly for a finite x (NaN
+ * otherwise), one comparison, no libm. The one finite test of the firmware. */
 inline int cp_finite(cp_real x)
 {
     return x - x == CP_R(0.0);

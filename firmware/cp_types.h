@@ -100,10 +100,4 @@ enum cp_err {
 #define CP_NOINLINE
 #endif
 
-/* Finite test without libm: a NaN fails x == x, an infinity fails x - x == x - x. */
-static CP_ALWAYS_INLINE int cp_isfinite(cp_real x)
-{
-    return (x == x) && (x - x == x - x);
-}
-
 #endif /* CP_TYPES_H */

@@ -23,38 +23,6 @@
 #define ZERO CP_R(0.0)
 #define DRC_K_INF CP_R(1.0e30) /* "unbounded" curvature of the one-zero-angle limit */
 
-/* ---- vectors: forwarded to the shared helpers of cp_math.h (one copy in the image; the
- * same operations in the same order; a struct cp_vec3 read as 3 reals) ---- */
-#define CV3(v) ((const cp_real *)(v))
-
-static cp_real dot3(const struct cp_vec3 *a, const struct cp_vec3 *b)
-{
-    return cp_v3_dot(CV3(a), CV3(b));
-}
-
-static void sub3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_sub(CV3(a), CV3(b), (cp_real *)o);
-}
-
-/* o = a x b (o may alias a or b) */
-static void cross3(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_cross(CV3(a), CV3(b), (cp_real *)o);
-}
-
-/* o = sa a + sb b */
-static void comb3(cp_real sa, const struct cp_vec3 *a, cp_real sb, const struct cp_vec3 *b,
-                  struct cp_vec3 *o)
-{
-    cp_v3_comb((cp_real *)o, sa, CV3(a), sb, CV3(b));
-}
-
-static cp_real norm3(const struct cp_vec3 *a)
-{
-    return cp_v3_norm(CV3(a));
-}
-
 /* ---- the exponential segment model ---- */
 
 /* Series terms: E1 = sum_{k=0}^{S} q^k/(k+1)!, E2 = sum q^k/(k+2)! on |q| <= 1.
@@ -223,15 +191,19 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     if (n > CP_MAX_DRC_POINTS) {
         return CP_ERR_TOO_MANY;
     }
-    for (k = 0; k < 3u; k++) {
-        lo[k] = hi[k] = CV3(p)[k]; /* (a non-finite P_0 is rejected below, unused) */
-    }
+    /* the bounding box from P_0 (a non-finite P_0 is rejected below, unused) */
+    lo[0] = hi[0] = p[0].x;
+    lo[1] = hi[1] = p[0].y;
+    lo[2] = hi[2] = p[0].z;
     for (i = 0; i < n; i++) {
-        const cp_real *v = CV3(&p[i * ps]);
+        const struct cp_vec3 *q = &p[i * ps];
+        cp_real v[3];
+        v[0] = q->x;
+        v[1] = q->y;
+        v[2] = q->z;
         for (k = 0; k < 3u; k++) {
             if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
-                /* x - x is 0 for finite x, NaN for NaN and Inf */
-                return v[k] - v[k] == ZERO ? CP_ERR_RANGE : CP_ERR_NONFINITE;
+                return cp_finite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
             }
             lo[k] = v[k] < lo[k] ? v[k] : lo[k];
             hi[k] = v[k] > hi[k] ? v[k] : hi[k];
@@ -245,13 +217,13 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     }
     dd = cp_sqrt(dd) * DRC_COINCIDENT_REL;
     for (i = 0; i + 1u < n; i++) {
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
-        w->len[i] = norm3(&d1);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        w->len[i] = cp_v3_norm(&d1);
         if (!(w->len[i] > dd)) {
             return CP_ERR_COINCIDENT;
         }
         if (i > 0u) {
-            cp_real co = dot3(&d0, &d1);
+            cp_real co = cp_v3_dot(&d0, &d1);
             if (!(co > ZERO)) {
                 return CP_ERR_TURN;
             }
@@ -299,9 +271,9 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
     w->phi[n - 1u] = ZERO;
     if (n == 3u) {
         struct cp_vec3 ch;
-        sub3(&p[2u * ps], &p[0], &ch);
+        cp_v3_sub(&p[2u * ps], &p[0], &ch);
         cp_sincos(w->phi[1], &x, &q);
-        k = x / norm3(&ch); /* half the signed curvature of the circle */
+        k = x / cp_v3_norm(&ch); /* half the signed curvature of the circle */
         for (e = 0; e < 2u; e++) {
             x = w->len[e] * k;
             w->phi[e * (n - 1u)] = cp_atan2(x, cp_sqrt(ONE - x * x));
@@ -377,7 +349,7 @@ static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, str
         uint32_t c = i + 1u < n ? i : n - 2u;
         struct cp_vec3 d;
         cp_real l = w.len[c];
-        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
+        cp_v3_sub(&p[(c + 1u) * ps], &p[c * ps], &d);
         (void)rot_z(-tan_angle(&w, i, n), d.x / l, d.y / l, &t[i * ts]);
     }
     return CP_OK;
@@ -436,17 +408,17 @@ static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_
     }
     for (i = 1; i + 1u < n; i++) {
         cp_real cl, co;
-        sub3(&p[i * ps], &p[(i - 1u) * ps], &d0);
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d1);
-        co = dot3(&d0, &d1);
-        cross3(&d0, &d1, &c);
-        cl = norm3(&c);
+        cp_v3_sub(&p[i * ps], &p[(i - 1u) * ps], &d0);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d1);
+        co = cp_v3_dot(&d0, &d1);
+        cp_v3_cross(&d0, &d1, &c);
+        cl = cp_v3_norm(&c);
         w->phi[i] = ZERO;
         if (cl > CP_R(1e-6) * w->len[i - 1u] * w->len[i]) {
             cp_real sg = ONE;
-            comb3(ONE / cl, &c, ZERO, &c, &c);
-            if (have && dot3(&c, &t[(i - 1u) * ts]) < ZERO) {
-                comb3(-ONE, &c, ZERO, &c, &c);
+            cp_v3_comb(&c, ONE / cl, &c, ZERO, &c);
+            if (have && cp_v3_dot(&c, &t[(i - 1u) * ts]) < ZERO) {
+                cp_v3_comb(&c, -ONE, &c, ZERO, &c);
                 sg = -ONE;
             }
             for (k = have ? i : 0u; k <= i; k++) {
@@ -462,9 +434,9 @@ static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_
     t[(n - 1u) * ts] = t[(n - 2u) * ts];
     for (i = 1; i + 2u < n; i++) {
         cp_real ang;
-        cross3(&t[i * ts], &t[(i + 1u) * ts], &c);
-        sub3(&p[(i + 1u) * ps], &p[i * ps], &d0);
-        ang = cp_atan2(dot3(&c, &d0) / w->len[i], dot3(&t[i * ts], &t[(i + 1u) * ts]));
+        cp_v3_cross(&t[i * ts], &t[(i + 1u) * ts], &c);
+        cp_v3_sub(&p[(i + 1u) * ps], &p[i * ps], &d0);
+        ang = cp_atan2(cp_v3_dot(&c, &d0) / w->len[i], cp_v3_dot(&t[i * ts], &t[(i + 1u) * ts]));
         if (!(cp_fabs(ang) < CP_R(0.78539816339744830962))) {
             return CP_ERR_TWIST;
         }
@@ -488,9 +460,9 @@ static CP_NOINLINE void tilt_3d(const struct cp_vec3 *p, unsigned ps, uint32_t n
         if (n < 4u) {
             continue;
         }
-        sub3(&p[(v + 1u) * ps], &p[(v - 1u) * ps], &ch2);
+        cp_v3_sub(&p[(v + 1u) * ps], &p[(v - 1u) * ps], &ch2);
         cp_sincos(w->phi[v], &sn, &cs);
-        ks = TWO * sn / norm3(&ch2); /* signed 3-point curvature */
+        ks = TWO * sn / cp_v3_norm(&ch2); /* signed 3-point curvature */
         if (i == 0u) {
             chi[i] = ks * w->tau[1] * w->len[0] * w->len[1] / CP_R(3.0);
         } else if (i + 1u == n) {
@@ -516,13 +488,13 @@ static CP_NOINLINE void orient_3d(const struct cp_vec3 *p, unsigned ps, struct c
         uint32_t c = i + 1u < n ? i : n - 2u;
         struct cp_vec3 d, nd, nrm = t[i * ts];
         cp_real sn, cs;
-        sub3(&p[(c + 1u) * ps], &p[c * ps], &d);
-        comb3(ONE / norm3(&d), &d, ZERO, &d, &d);
-        cross3(&nrm, &d, &nd);
+        cp_v3_sub(&p[(c + 1u) * ps], &p[c * ps], &d);
+        cp_v3_comb(&d, ONE / cp_v3_norm(&d), &d, ZERO, &d);
+        cp_v3_cross(&nrm, &d, &nd);
         cp_sincos(-tan_angle(w, i, n), &sn, &cs);
-        comb3(cs, &d, sn, &nd, &t[i * ts]);
+        cp_v3_comb(&t[i * ts], cs, &d, sn, &nd);
         cp_sincos(chi[i], &sn, &cs);
-        comb3(cs, &t[i * ts], sn, &nrm, &t[i * ts]);
+        cp_v3_comb(&t[i * ts], cs, &t[i * ts], sn, &nrm);
     }
 }
 
@@ -640,29 +612,29 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
     struct cp_vec3 d, ga, gb, e1, e2, v1, vm;
     cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs;
     int i;
-    sub3(&b->p, &a->p, &d);
-    c = norm3(&d);
-    comb3(ONE / c, &d, ZERO, &d, &d);
-    td = dot3(&a->t, &d);
-    comb3(ONE, &a->t, -td, &d, &ga);
-    w = norm3(&ga);
+    cp_v3_sub(&b->p, &a->p, &d);
+    c = cp_v3_norm(&d);
+    cp_v3_comb(&d, ONE / c, &d, ZERO, &d);
+    td = cp_v3_dot(&a->t, &d);
+    cp_v3_comb(&ga, ONE, &a->t, -td, &d);
+    w = cp_v3_norm(&ga);
     ang = cp_atan2(w, td);
-    comb3(w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga, &ga);
-    td = dot3(&b->t, &d);
-    comb3(ONE, &b->t, -td, &d, &gb);
-    w = norm3(&gb);
+    cp_v3_comb(&ga, w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga);
+    td = cp_v3_dot(&b->t, &d);
+    cp_v3_comb(&gb, ONE, &b->t, -td, &d);
+    w = cp_v3_norm(&gb);
     ang = cp_atan2(w, td);
-    comb3(w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb, &gb);
+    cp_v3_comb(&gb, w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb);
     {
-        cp_real na = norm3(&ga), nb = norm3(&gb);
+        cp_real na = cp_v3_norm(&ga), nb = cp_v3_norm(&gb);
         struct cx gA, gB, rho;
         if (na > ZERO) {
-            comb3(ONE / na, &ga, ZERO, &ga, &e1);
-            cross3(&d, &e1, &e2);
+            cp_v3_comb(&e1, ONE / na, &ga, ZERO, &ga);
+            cp_v3_cross(&d, &e1, &e2);
             gA.re = na;
             gA.im = ZERO;
-            gB.re = dot3(&gb, &e1);
-            gB.im = dot3(&gb, &e2);
+            gB.re = cp_v3_dot(&gb, &e1);
+            gB.im = cp_v3_dot(&gb, &e2);
             rho = cdiv(gB, gA);
             rho.re = -rho.re;
             rho.im = -rho.im;
@@ -707,22 +679,22 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
             st = cmul(cc, e[0]);
             gmre = gA.re + st.re;
             gmim = st.im;
-            comb3(d1re, &e1, d1im, &e2, &v1);
-            comb3(gmre, &e1, gmim, &e2, &vm);
+            cp_v3_comb(&v1, d1re, &e1, d1im, &e2);
+            cp_v3_comb(&vm, gmre, &e1, gmim, &e2);
         } else {
-            comb3(CP_R(0.25), &ga, CP_R(-0.25), &gb, &v1);
-            comb3(CP_R(-0.25), &ga, CP_R(-0.25), &gb, &vm);
+            cp_v3_comb(&v1, CP_R(0.25), &ga, CP_R(-0.25), &gb);
+            cp_v3_comb(&vm, CP_R(-0.25), &ga, CP_R(-0.25), &gb);
         }
     }
     /* M = A + c/(2 cos al) (cos al d + sin al unit(D1)), al = |D1| */
-    al = norm3(&v1);
+    al = cp_v3_norm(&v1);
     cp_sincos(al, &sn, &cs);
     w = HALF * c / cs;
-    comb3(w * cs, &d, al > ZERO ? w * sn / al : ZERO, &v1, &v1);
-    comb3(ONE, &a->p, ONE, &v1, &m->p);
-    al = norm3(&vm);
+    cp_v3_comb(&v1, w * cs, &d, al > ZERO ? w * sn / al : ZERO, &v1);
+    cp_v3_comb(&m->p, ONE, &a->p, ONE, &v1);
+    al = cp_v3_norm(&vm);
     cp_sincos(al, &sn, &cs);
-    comb3(cs, &d, al > ZERO ? sn / al : ZERO, &vm, &m->t);
+    cp_v3_comb(&m->t, cs, &d, al > ZERO ? sn / al : ZERO, &vm);
 }
 
 void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m)
@@ -787,17 +759,17 @@ cp_real drc_kappa3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struc
 {
     struct cp_vec3 u, v, w, x;
     cp_real lu, lv, lw, s;
-    sub3(b, a, &u);
-    sub3(c, b, &v);
-    sub3(c, a, &w);
-    lu = norm3(&u);
-    lv = norm3(&v);
-    lw = norm3(&w);
+    cp_v3_sub(b, a, &u);
+    cp_v3_sub(c, b, &v);
+    cp_v3_sub(c, a, &w);
+    lu = cp_v3_norm(&u);
+    lv = cp_v3_norm(&v);
+    lw = cp_v3_norm(&w);
     if (!(lu > ZERO && lv > ZERO && lw > ZERO)) {
         return ZERO;
     }
-    cross3(&u, &v, &x);
-    s = norm3(&x) / (lu * lv);
+    cp_v3_cross(&u, &v, &x);
+    s = cp_v3_norm(&x) / (lu * lv);
     if (sgn && x.z < ZERO) {
         s = -s;
     }
@@ -809,19 +781,19 @@ cp_real drc_tau4(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct 
 {
     struct cp_vec3 u0, u1, u2, n1, n2, x;
     cp_real l1, l2, l;
-    sub3(b, a, &u0);
-    sub3(c, b, &u1);
-    sub3(d, c, &u2);
-    cross3(&u0, &u1, &n1);
-    cross3(&u1, &u2, &n2);
-    l1 = norm3(&n1);
-    l2 = norm3(&n2);
-    l = norm3(&u1);
+    cp_v3_sub(b, a, &u0);
+    cp_v3_sub(c, b, &u1);
+    cp_v3_sub(d, c, &u2);
+    cp_v3_cross(&u0, &u1, &n1);
+    cp_v3_cross(&u1, &u2, &n2);
+    l1 = cp_v3_norm(&n1);
+    l2 = cp_v3_norm(&n2);
+    l = cp_v3_norm(&u1);
     if (!(l1 > ZERO && l2 > ZERO && l > ZERO)) {
         return ZERO;
     }
-    cross3(&n1, &n2, &x);
-    return cp_atan2(dot3(&x, &u1) / (l * l1 * l2), dot3(&n1, &n2) / (l1 * l2)) / l;
+    cp_v3_cross(&n1, &n2, &x);
+    return cp_atan2(cp_v3_dot(&x, &u1) / (l * l1 * l2), cp_v3_dot(&n1, &n2) / (l1 * l2)) / l;
 }
 
 /* One step of the extremum count: differences below thr are flat. */
@@ -940,7 +912,7 @@ static void rlaw(const struct drc_path *it, cp_real sg, cp_real r[3])
     const cp_real *c = it->rp;
     cp_real is = ONE / it->s_tot, r0 = ZERO, r1 = ZERO, r2 = ZERO;
     int i;
-    if (it->rc->surf.radius == CANAL_R_COS) {
+    if (it->g->radius == CANAL_R_COS) {
         cp_real w = CP_TWO_PI * c[2], sn, cs;
         cp_sincos(w * sg, &sn, &cs);
         r0 = c[0] * cs + c[1];
@@ -974,13 +946,18 @@ static void orig(const struct drc_path *it, uint32_t i, struct drc_pt *o)
  * the ends swapped back into curve order. The depth-0 interval is the original segment:
  * its far end is loaded into stk[0] when level 1 is (re)built (there it stays stk[0], or
  * the level-1 midpoint replaces it). pos == steps is the line's last original point: no
- * levels (js = N - 1 forward, or 0 by the unsigned wrap of N - 2 - (N - 1) + 1 backward). */
+ * levels (its segment js = N - 1 is past the last; the point is P_{N-1} forward, P_0
+ * backward). */
 static void walk_to(struct drc_path *it, uint32_t pos)
 {
     uint32_t kk = it->passes, m = pos & ((((uint32_t)1u) << kk) - 1u), z = m, d = 1u, dn = 0u;
-    uint32_t js = pos >> kk, top = pos < it->steps ? kk : 0u;
+    uint32_t js = pos >> kk, top = pos < it->head.steps ? kk : 0u;
+    /* the original points at the ends of segment js (travel order, js <= nseg): p0 where
+     * travel enters it (curve index js forward, nseg - js backward), p1 = p0 + 1 or
+     * p0 - 1 where it leaves (read only with a level, pos < steps: then js < nseg, so
+     * p0 >= 1 backward) */
+    uint32_t p0 = it->dir ? it->nseg - js : js;
     struct drc_pt tmp;
-    js = it->dir ? it->nseg - 1u - js : js; /* the segment, in curve order */
     if (m != 0u && pos == it->pos + 1u) {
         tmp = it->stk[kk - 1u]; /* the point at pos: the old leaf's far end */
         dn = kk;                /* depth of node pos: K - ctz(m); m has a set bit below K */
@@ -990,12 +967,12 @@ static void walk_to(struct drc_path *it, uint32_t pos)
         }
         d = dn;
     } else {
-        orig(it, js + it->dir, &it->cur);
+        orig(it, p0, &it->cur);
     }
     for (; d <= top; d++) {
         const struct drc_pt *pf = &it->stk[d == 1u ? 0u : d - 2u];
         if (d == 1u) {
-            orig(it, js + 1u - it->dir, &it->stk[0]);
+            orig(it, it->dir ? p0 - 1u : p0 + 1u, &it->stk[0]);
         }
         if (d != dn) {
             insert_planar(it->dir ? pf : &it->cur, it->dir ? &it->cur : pf, &tmp);
@@ -1014,8 +991,8 @@ static void walk_to(struct drc_path *it, uint32_t pos)
  * circle): alpha = q0 cos(u_j/2), b = sin(u_j/2) (canal.h). */
 static void label(const struct drc_path *it, uint32_t j, cp_real *a, cp_real *b)
 {
-    const struct toolpath_cfg *rc = it->rc;
-    cp_real cs, du = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : ZERO;
+    const struct raster_cfg *rc = it->rc;
+    cp_real cs, du = it->head.n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->head.n - 1u) : ZERO;
     cp_sincos(HALF * (rc->u0 + (cp_real)j * du), b, &cs);
     *a = it->q0 * cs;
 }
@@ -1131,19 +1108,19 @@ static CP_NOINLINE cp_real link_at(const struct drc_path *it, uint32_t jl, cp_re
  * the leaf walked into the point; at a line's first point and on the links (the end
  * circles) the end leaf's, kend[], recorded by the forward walks. */
 static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
-                                struct toolpath_pt *pt)
+                                struct raster_pt *pt)
 {
-    const struct toolpath_cfg *rc = it->rc;
+    const struct raster_cfg *rc = it->rc;
     struct canal_frame f;
     struct canal_point cp;
     /* the radius offset: 0 for OUT_SURFACE, else tool_r; EDGE mode (the only user) has
      * tool_r == 0 exactly with OUT_SURFACE (init), and + ZERO turns a -0 into +0 */
     cp_real h, b, den, off = rc->tool_r + ZERO;
     pt->line = -1;
-    pt->index = (uint16_t)(r - it->steps);
     pt->t = (jl & 1u) ? ZERO : ONE;
-    if (r > it->steps) {
-        (void)link_at(it, jl, (cp_real)(r - it->steps) / (cp_real)(it->link + 1u), &f, &h, &b);
+    if (r > it->head.steps) {
+        pt->index = (uint16_t)(r - it->head.steps);
+        (void)link_at(it, jl, (cp_real)(r - it->head.steps) / (cp_real)(it->head.link + 1u), &f, &h, &b);
     } else {
         if (it->line != (int32_t)jl || it->pos > r) {
             line_start(it, jl);
@@ -1154,14 +1131,14 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
         while (it->pos < r) {
             line_step(it);
         }
-        if (!it->dir && r == it->steps) {
+        if (!it->dir && r == it->head.steps) {
             it->lam_tot = it->lam; /* a forward line's sum: backward lines start here */
         }
         pt->line = (int16_t)jl;
-        pt->index = (uint16_t)(it->dir ? it->steps - r : r);
+        pt->index = (uint16_t)(it->dir ? it->head.steps - r : r);
         pt->p = it->cur.p;
         pt->n = it->cur.t;
-        pt->t = (cp_real)r / (cp_real)it->steps;
+        pt->t = (cp_real)r / (cp_real)it->head.steps;
         if (!it->edge) {
             return CP_OK;
         }
@@ -1179,7 +1156,7 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     canal_point(&f, h, b, off, &cp);
     pt->p = cp.m;
     pt->n = cp.n;
-    if (rc->output == TOOLPATH_OUT_TIP) {
+    if (rc->output == RASTER_OUT_TIP) {
         pt->p.z -= off;
     }
     den = DRC_CUSP_EPS * (f.q2 * b * b + h * h);
@@ -1189,11 +1166,11 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     return CP_OK;
 }
 
-/* 1 if the point's position is finite (x - x is NaN for NaN and Inf). */
-static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
+/* 1 if the point's position is finite (finite coordinates, |p| <= ~1e5 mm, cannot
+ * overflow the sum; a NaN or Inf makes it non-finite). */
+static CP_NOINLINE int pt_finite(const struct raster_pt *pt)
 {
-    cp_real x = pt->p.x + pt->p.y + pt->p.z;
-    return x - x == ZERO;
+    return cp_finite(pt->p.x + pt->p.y + pt->p.z);
 }
 
 /* Walk the points r = lo..hi of blocks 0..nb-1 (the curve: 1; the lines: n; the links:
@@ -1205,7 +1182,7 @@ static CP_NOINLINE int pt_finite(const struct toolpath_pt *pt)
 static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint32_t hi,
                             cp_real *sag)
 {
-    struct toolpath_pt pt;
+    struct raster_pt pt;
     struct cp_vec3 q0, q1, u, v;
     cp_real x;
     uint32_t jl, r;
@@ -1220,13 +1197,13 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint3
             if (!pt_finite(&pt)) {
                 return CP_ERR_NUMERIC;
             }
-            if (r >= 2u && r <= it->steps) { /* distance of q1 from the chord q0 pt.p */
-                sub3(&pt.p, &q0, &u);
-                sub3(&q1, &q0, &v);
-                x = -dot3(&u, &v) / dot3(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
+            if (r >= 2u && r <= it->head.steps) { /* distance of q1 from the chord q0 pt.p */
+                cp_v3_sub(&pt.p, &q0, &u);
+                cp_v3_sub(&q1, &q0, &v);
+                x = -cp_v3_dot(&u, &v) / cp_v3_dot(&u, &u); /* v -= (u.v / u.u) u (x u + v: the sum
                                                      v + x u, bit for bit) */
-                comb3(x, &u, ONE, &v, &v);
-                x = CP_R(0.25) * norm3(&v);
+                cp_v3_comb(&v, x, &u, ONE, &v);
+                x = CP_R(0.25) * cp_v3_norm(&v);
                 if (!(x >= ZERO)) { /* NaN: pt == q0 (a zero chord), no sagitta (B4) */
                     return CP_ERR_NUMERIC;
                 }
@@ -1239,178 +1216,205 @@ static CP_NOINLINE int walk(struct drc_path *it, uint32_t nb, uint32_t lo, uint3
     return CP_OK;
 }
 
-int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct toolpath_cfg *rc)
+/* drc_path_init, step 1: the checks that need no geometry, in the order of drc.h (g and
+ * edge, raster_check, passes, the radius parameters: a non-finite sum is one
+ * CP_ERR_NONFINITE, huge finite values that overflow included; the EDGE extras), and the
+ * radius law in the power basis (COS kept as b, c, k) into it->rp. */
+static int init_checks(struct drc_path *it, const struct drc_cfg *g, const struct raster_cfg *rc)
 {
-    uint32_t kk, i, e;
-    cp_real sag = ZERO, *c = it->rp, t, x;
-    int err, au;
-    it->count = 0;
-    it->k = 0;
-    it->line = -1;
-    it->g = g;
-    it->rc = rc;
+    cp_real *c = it->rp, x;
+    uint32_t i;
+    int err;
     if (g == NULL || g->edge > 1u) {
         return CP_ERR_INVAL;
     }
     /* the raster, checked as for every model (raster_check; in CURVE mode too, although
-     * it uses only tol), then the radius parameters: a non-finite sum is one
-     * CP_ERR_NONFINITE (huge finite values that overflow included) */
+     * it uses only tol) */
     err = raster_check(rc, CP_PI);
     if (err != CP_OK) {
         return err;
     }
-    t = rc->tol;
-    au = g->passes == DRC_PASSES_AUTO;
-    if (!au && g->passes > CP_MAX_PASSES) {
+    if (g->passes != DRC_PASSES_AUTO && g->passes > CP_MAX_PASSES) {
         return CP_ERR_TOO_MANY;
     }
-    x = rc->surf.rp[0] + rc->surf.rp[1] + rc->surf.rp[2] + rc->surf.rp[3];
-    if (!(x - x == ZERO)) { /* NaN for NaN and Inf */
+    /* (the sum is checked in CURVE mode too, the parameters are used in EDGE mode only) */
+    x = g->rp[0] + g->rp[1] + g->rp[2] + g->rp[3];
+    if (!cp_finite(x)) {
         return CP_ERR_NONFINITE;
     }
-    if (au && t == ZERO) { /* AUTO needs the tolerance (raster_check: 0 or in [1e-5, 10]) */
+    /* AUTO needs the tolerance (raster_check: 0 or in [1e-5, 10]) */
+    if (g->passes == DRC_PASSES_AUTO && rc->tol == ZERO) {
         return CP_ERR_RANGE;
     }
-    it->edge = g->edge;
-    it->n = 1u;
-    it->link = 0u;
-    it->s_tot = ONE;
-    it->lam_tot = ZERO;
-    it->kend[0] = ZERO;
-    it->kend[1] = ZERO;
-    it->q0 = ONE;
     for (i = 0; i < 4u; i++) {
-        c[i] = rc->surf.rp[i];
-        if (it->edge && cp_fabs(c[i]) > CANAL_COORD_MAX) {
+        c[i] = g->rp[i];
+        if (g->edge && cp_fabs(c[i]) > CANAL_COORD_MAX) {
             return CP_ERR_RADIUS;
         }
     }
-    if (it->edge) {
-        /* EDGE extras: angle labels, LINES, a canal radius law, and a tool radius exactly
-         * with a tool output (raster_check: none with OUT_SURFACE) */
-        if (rc->labels != TOOLPATH_LABEL_ANGLE || rc->mode != TOOLPATH_LINES ||
-            rc->surf.radius > CANAL_R_CUBIC ||
-            (rc->output != TOOLPATH_OUT_SURFACE && rc->tool_r == ZERO)) {
-            return CP_ERR_INVAL;
-        }
-        it->n = rc->n;
-        if (rc->surf.radius != CANAL_R_COS) { /* the power basis of R(sigma) */
-            if (rc->surf.radius == CANAL_R_CUBIC) {
-                x = c[1] - c[2];
-                c[3] += CP_R(3.0) * x - c[0];
-                c[2] = CP_R(3.0) * (c[0] - c[1] - x);
-                c[1] = CP_R(3.0) * (c[1] - c[0]);
-            } else {
-                c[1] = rc->surf.radius == CANAL_R_LINEAR ? c[1] - c[0] : ZERO;
-                c[2] = ZERO;
-                c[3] = ZERO;
-            }
-        }
+    if (!g->edge) {
+        return CP_OK;
     }
-    err = tangents_planar(g->p, 1u, it->tan, 1u, g->n);
-    if (err != CP_OK) {
-        return err;
+    /* EDGE extras: angle labels, LINES, a canal radius law, and a tool radius exactly
+     * with a tool output (raster_check: none with OUT_SURFACE) */
+    if (rc->labels != RASTER_LABEL_ANGLE || rc->mode != RASTER_LINES ||
+        g->radius > CANAL_R_CUBIC || (rc->output != RASTER_OUT_SURFACE && rc->tool_r == ZERO)) {
+        return CP_ERR_INVAL;
     }
-    it->nseg = (uint8_t)(g->n - 1u);
-    e = it->edge;
-    /* AUTO: K = 1, 2, ... until the sagitta fits (CP_ERR_TOL when even CP_MAX_PASSES
-     * does not); else the one K (g->passes is at most CP_MAX_PASSES here, and that
-     * iteration ends the loop) */
+    if (g->radius == CANAL_R_CUBIC) { /* Bernstein -> power basis */
+        x = c[1] - c[2];
+        c[3] += CP_R(3.0) * x - c[0];
+        c[2] = CP_R(3.0) * (c[0] - c[1] - x);
+        c[1] = CP_R(3.0) * (c[1] - c[0]);
+    } else if (g->radius != CANAL_R_COS) { /* CONST, LINEAR */
+        c[1] = g->radius == CANAL_R_LINEAR ? c[1] - c[0] : ZERO;
+        c[2] = ZERO;
+        c[3] = ZERO;
+    }
+    return CP_OK;
+}
+
+/* drc_path_init, step 3: the passes K. AUTO: K = 1, 2, ... until the sagitta fits
+ * (CP_ERR_TOL when even CP_MAX_PASSES does not); else the one K (g->passes is at most
+ * CP_MAX_PASSES here, and that iteration ends the loop). Each K walks the curve (its
+ * sagitta, the arc length that scales sigma) and in EDGE mode every line (R, tool, cusp,
+ * sagitta; Lambda on the way). */
+static int init_passes(struct drc_path *it, const struct drc_cfg *g, cp_real tol)
+{
+    uint32_t kk;
+    uint8_t edge = it->edge;
+    int au = g->passes == DRC_PASSES_AUTO, err;
     for (kk = au ? 1u : g->passes; kk <= CP_MAX_PASSES; kk++) {
+        cp_real sag = ZERO;
 #if ((CP_MAX_DRC_POINTS - 1) << CP_MAX_PASSES) > CP_MAX_STEPS /* (else it cannot fail) */
         if (((uint32_t)it->nseg << kk) > CP_MAX_STEPS) {
             return au ? CP_ERR_TOL : CP_ERR_TOO_MANY;
         }
 #endif
         it->passes = (uint8_t)kk;
-        it->steps = (uint16_t)(it->nseg << kk);
-        sag = ZERO;
+        it->head.steps = (uint16_t)(it->nseg << kk);
         /* the curve itself: its sagitta, and the arc length (sigma's scale) */
         it->edge = 0u;
-        err = walk(it, 1u, 0u, it->steps, &sag);
+        err = walk(it, 1u, 0u, it->head.steps, &sag);
         it->s_tot = it->s;
         it->kend[1] = it->kap; /* the last leaf's curvature (P_{N-1} end circle) */
-        it->edge = (uint8_t)e;
-        if (err == CP_OK && e) { /* every line (R, tool, cusp, sagitta): Lambda on the way */
+        it->edge = edge;
+        if (err == CP_OK && edge) {
             cp_real r[3];
             rlaw(it, ZERO, r);
             it->q0 = cp_sqrt(ONE + r[1] * r[1]);
-            err = walk(it, it->n, 0u, it->steps, &sag);
+            err = walk(it, it->head.n, 0u, it->head.steps, &sag);
         }
         if (err != CP_OK) {
             return err;
         }
-        if (!au || sag <= DRC_SAG_MARGIN * t) {
-            break;
+        if (!au || sag <= DRC_SAG_MARGIN * tol) {
+            return CP_OK;
         }
     }
-    if (kk > CP_MAX_PASSES) {
+    return CP_ERR_TOL;
+}
+
+/* drc_path_init, step 4 (EDGE mode): the link points, uniform angle steps on the end
+ * circle (radius (R - off)/q), so the chord tolerance fixes them: step 4 x sqrt(tol /
+ * 2 rad) DRC_SAG_MARGIN (x <= asin x: the sagitta of that step is <= 0.81 tol); then
+ * every link point is checked (regularity, finite). */
+static int init_links(struct drc_path *it, const struct raster_cfg *rc)
+{
+    cp_real worst = ONE, h, b, x, t = rc->tol, sag = ZERO;
+    struct canal_frame f;
+    uint32_t i;
+    for (i = 0; i + 1u < it->head.n; i++) {
+        x = link_at(it, i, ZERO, &f, &h, &b);
+        h = (f.r - rc->tool_r) / cp_sqrt(f.q2); /* (R - off)/q, off as point_at's */
+        if (h > t && t > ZERO) {
+            x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
+            worst = x > worst ? x : worst;
+        }
+    }
+    if (!(worst - ONE <= (cp_real)CP_MAX_LINK)) {
         return CP_ERR_TOL;
     }
-    if (e) {
-        /* link points: uniform angle steps on the end circle (radius (R - off)/q), so
-         * the chord tolerance fixes them: step 4 x sqrt(tol / 2 rad) DRC_SAG_MARGIN
-         * (x <= asin x: the sagitta of that step is <= 0.81 tol); then every link point
-         * is checked (regularity) */
-        cp_real worst = ONE, h, b;
-        struct canal_frame f;
-        for (i = 0; i + 1u < it->n; i++) {
-            x = link_at(it, i, ZERO, &f, &h, &b);
-            h = (f.r - rc->tool_r) / cp_sqrt(f.q2); /* (R - off)/q, off as point_at's */
-            if (h > t && t > ZERO) {
-                x = cp_ceil(x / (CP_R(4.0) * DRC_SAG_MARGIN * cp_sqrt(t / (TWO * h))));
-                worst = x > worst ? x : worst;
-            }
-        }
-        if (!(worst - ONE <= (cp_real)CP_MAX_LINK)) {
-            return CP_ERR_TOL;
-        }
-        it->link = rc->link != TOOLPATH_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
-        err = walk(it, it->n - 1u, it->steps + 1u, (uint32_t)it->steps + it->link, &sag);
-        if (err != CP_OK) {
-            return err;
-        }
+    it->head.link = rc->link != RASTER_LINK_AUTO ? rc->link : (uint16_t)(worst - ONE);
+    return walk(it, it->head.n - 1u, it->head.steps + 1u,
+                (uint32_t)it->head.steps + it->head.link, &sag);
+}
+
+int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct raster_cfg *rc)
+{
+    int err;
+    it->head.count = 0;
+    it->head.k = 0;
+    it->line = -1;
+    it->g = g;
+    it->rc = rc;
+    /* step 1: the checks without geometry, the radius law */
+    err = init_checks(it, g, rc);
+    if (err != CP_OK) {
+        return err;
     }
-    it->mode = TOOLPATH_LINES;
-    it->count = raster_count(it->n, it->steps, it->link);
+    it->edge = g->edge;
+    it->head.n = it->edge ? rc->n : 1u;
+    it->head.link = 0u;
+    it->s_tot = ONE;
+    it->lam_tot = ZERO;
+    it->kend[0] = ZERO;
+    it->kend[1] = ZERO;
+    it->q0 = ONE;
+    /* step 2: the points and their tangents */
+    err = tangents_planar(g->p, 1u, it->tan, 1u, g->n);
+    if (err != CP_OK) {
+        return err;
+    }
+    it->nseg = (uint8_t)(g->n - 1u);
+    /* step 3: the passes (every line walked); step 4: the links (every link walked) */
+    err = init_passes(it, g, rc->tol);
+    if (err == CP_OK && it->edge) {
+        err = init_links(it, rc);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    it->head.mode = RASTER_LINES;
+    it->head.count = raster_count(it->head.n, it->head.steps, it->head.link);
     it->line = -1;
     return CP_OK;
 }
 
 uint32_t drc_path_count(const struct drc_path *it)
 {
-    return it->count;
+    return it->head.count;
 }
 
 int drc_path_seek(struct drc_path *it, uint32_t k)
 {
     it->line = -1; /* next() re-positions (descent or re-walk of the line) */
-    return raster_seek(&it->k, it->count, k);
+    return raster_seek(&it->head, k);
 }
 
-int drc_path_next(struct drc_path *it, struct toolpath_pt *pt)
+int drc_path_next(struct drc_path *it, struct raster_pt *pt)
 {
-    uint32_t block = (uint32_t)it->steps + 1u + it->link;
-    struct toolpath_pt q;
-    if (it->k >= it->count) {
+    uint32_t block = (uint32_t)it->head.steps + 1u + it->head.link;
+    struct raster_pt q;
+    if (it->head.k >= it->head.count) {
         return CP_ERR_DONE;
     }
-    (void)point_at(it, it->k / block, it->k % block, &q);
+    (void)point_at(it, it->head.k / block, it->head.k % block, &q);
     /* as the other models: a non-finite point is not written, k unchanged (n is
      * finite with p: EDGE p = C + (R - off) n, CURVE p and t from the same angles) */
     if (!pt_finite(&q)) {
         return CP_ERR_NUMERIC;
     }
     *pt = q;
-    it->k++;
+    it->head.k++;
     return CP_OK;
 }
 
 #if CP_REAL_DOUBLE
-CP_STATIC_ASSERT(sizeof(struct drc_path) <= 2u * 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 2u * 480u, drc_path_fits);
 CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 2u * 320u, drc_cfg_fits);
 #else
-CP_STATIC_ASSERT(sizeof(struct drc_path) <= 448u, drc_path_fits);
+CP_STATIC_ASSERT(sizeof(struct drc_path) <= 480u, drc_path_fits);
 CP_STATIC_ASSERT(sizeof(struct drc_cfg) <= 320u, drc_cfg_fits);
 #endif
 CP_STATIC_ASSERT(sizeof(struct drc_pt) == 2u * sizeof(struct cp_vec3), drc_pt_packed);

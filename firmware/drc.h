@@ -44,11 +44,11 @@
  *     curve is the contact curve C of a canal surface (canal.h) whose radius is the
  *     raster's RADIUS law over the normalised arc length sigma in [0, 1] of the
  *     thickened polyline; the family-2 curvature lines of LINES n u0 u1 are streamed
- *     zigzag with link points on the end circles, exactly like TOOLPATH_LINES;
+ *     zigzag with link points on the end circles, exactly like RASTER_LINES;
  *     pt.n = the unit surface normal. Lambda = integral kappa dR is summed over the
  *     thickened points (drc.c, rule and error bound there).
  *
- * Footprint (the whole M4F image must fit 32 KB flash): the stream uses only the planar
+ * Footprint: the stream uses only the planar
  * core (validation, tangent assignment, planar insertion) and the iterator, ~5.5 KB of
  * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
  * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4
@@ -66,7 +66,8 @@
 #ifndef DRC_H
 #define DRC_H
 
-#include "toolpath.h"
+#include "canal.h"
+#include "raster.h"
 
 /* Fixed iteration counts of A.2. The double build uses the published counts. The float
  * build stops where float precision is exhausted: a bisection halves a bracket of 98 (q)
@@ -106,40 +107,50 @@ struct drc_pt {
 /* The geometry of a DRC job (union path_geom member; lives in struct job for the
  * whole run, the iterator keeps a const pointer to it). */
 struct drc_cfg {
+    /* the curve */
     uint8_t n;      /* points given, 0..CP_MAX_DRC_POINTS (>= 3 at init) */
+    struct cp_vec3 p[CP_MAX_DRC_POINTS]; /* the points, mm, |coordinate| <= CANAL_COORD_MAX */
     uint8_t passes; /* K, 0..CP_MAX_PASSES; DRC_PASSES_AUTO = derive from raster tol */
+    /* what is streamed */
     uint8_t edge;   /* 0: the curve itself (CURVE mode); 1: fillet along it (EDGE mode) */
-    struct cp_vec3 p[CP_MAX_DRC_POINTS]; /* the points, mm, |coordinate| <= CANAL_COORD_MAX
-                                            (last: 16-bit loads reach the bytes) */
+    /* EDGE mode only (not read with edge == 0): the fillet's radius law over the arc-length
+     * fraction sigma in [0, 1] of the thickened curve, as the canal's RADIUS (canal.h):
+     *   radius  enum canal_radius_kind: CANAL_R_CONST, CANAL_R_LINEAR, CANAL_R_COS or
+     *           CANAL_R_CUBIC (CANAL_R_* above CUBIC: CP_ERR_INVAL)
+     *   rp      its parameters, mm (COS: b, c, k with R = b + c cos(k sigma)); finite, each
+     *           |rp[i]| <= CANAL_COORD_MAX, R(sigma) > 0 on [0, 1] (else CP_ERR_RADIUS) */
+    uint8_t radius;
+    cp_real rp[4];
 };
 
 #define DRC_PASSES_AUTO 0xFFu
 
-/* The streaming iterator (struct path's union). Field order for flash: the small integers
- * first (Thumb's 16-bit loads reach byte fields at offsets < 32, halfwords < 64, words
- * < 128), the reals next, the point arrays last. */
+/* The streaming iterator (struct path's union). */
 struct drc_path {
-    const struct drc_cfg *g;          /* the geometry (not copied: must outlive the run) */
-    const struct toolpath_cfg *rc;    /* the raster (not copied: must outlive the run) */
-    uint8_t mode;                     /* TOOLPATH_LINES (path info; the only mode) */
+    struct raster_head head;          /* mode (RASTER_LINES, the only one), n (lines), steps
+                                         (2^K (N-1)), link, count, k (raster.h) */
+    /* the request (not copied: both must outlive the run) */
+    const struct drc_cfg *g;          /* the geometry */
+    const struct raster_cfg *rc;      /* the raster */
+    /* the thickened curve */
     uint8_t edge;                     /* 0 CURVE mode, 1 EDGE mode (g->edge) */
     uint8_t passes;                   /* K in use (AUTO: the one found at init) */
-    uint8_t dir;                      /* walk direction: 0 P_0 -> P_{N-1}, 1 backward
-                                         (EDGE: odd lines, zigzag) */
     uint8_t nseg;                     /* original segments, N - 1 */
-    uint16_t n, steps, link;          /* lines, steps per line (2^K (N-1)), link points */
-    uint32_t count, k;                /* total points, points emitted */
-    uint32_t pos;                     /* walk position along the line, 0..steps */
-    int32_t line;                     /* line of the walk (-1: none) */
-    cp_real rp[4];                    /* radius law: COS b c k, else power-basis cubic (mm) */
-    cp_real q0;                       /* sqrt(1 + (dR/ds)^2) at P_0 (labels) */
-    cp_real lab_a, lab_b;             /* label of the walk's line */
-    cp_real s, lam, r_cur, kap;       /* walk: arc length, Lambda, R, last leaf's curvature */
+    struct cp_vec3 tan[CP_MAX_DRC_POINTS]; /* step 1: unit tangents at the original points */
     cp_real s_tot, lam_tot;           /* at the last point (forward walk) */
     cp_real kend[2];                  /* curvature of the first / last leaf (end circles) */
+    /* the EDGE fillet */
+    cp_real rp[4];                    /* radius law: COS b c k, else power-basis cubic (mm) */
+    cp_real q0;                       /* sqrt(1 + (dR/ds)^2) at P_0 (labels) */
+    /* the walk (the stream's position along a line) */
+    int32_t line;                     /* line of the walk (-1: none) */
+    uint8_t dir;                      /* walk direction: 0 P_0 -> P_{N-1}, 1 backward
+                                         (EDGE: odd lines, zigzag) */
+    uint32_t pos;                     /* walk position along the line, 0..steps */
+    cp_real lab_a, lab_b;             /* label of the walk's line */
+    cp_real s, lam, r_cur, kap;       /* walk: arc length, Lambda, R, last leaf's curvature */
     struct drc_pt cur;                /* the point of the walk */
     struct drc_pt stk[CP_MAX_PASSES]; /* stk[d - 1]: far end of the depth-d interval */
-    struct cp_vec3 tan[CP_MAX_DRC_POINTS]; /* step 1: unit tangents at the original points */
 };
 
 /* Size of K passes over n points: 2^K (n - 1) + 1, in *need.
@@ -229,7 +240,7 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
  * K = g->passes, or with DRC_PASSES_AUTO the smallest K whose leaf sagitta (measured on
  * the thickened curve, and in EDGE mode on every streamed line) is <= raster->tol.
  * raster fields used: CURVE mode: tol (AUTO only); EDGE mode: n, u0, u1 (ANGLE labels
- * only), link, tol, output, tool_r, surf.radius, surf.rp (the RADIUS law over sigma). Every
+ * only), link, tol, output, tool_r; and g->radius, g->rp (the radius law over sigma). Every
  * raster is checked as for the other models (raster_check, in CURVE mode too), in this
  * order: g NULL or edge out of range, raster_check (INVAL, NONFINITE, RANGE, TOO_MANY,
  * TOOL), passes, the radius parameters, the EDGE extras, then the points.
@@ -257,16 +268,16 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
  *                     line doubling back: its sagitta is undefined)
  * Returns CP_OK; then drc_path_next yields exactly drc_path_count() points. */
 CP_MUST_CHECK int drc_path_init(struct drc_path *it, const struct drc_cfg *g,
-                                const struct toolpath_cfg *raster);
+                                const struct raster_cfg *raster);
 
 /* Points drc_path_next yields in all (n lines of steps + 1 points, n - 1 links of
  * link points); 0 until drc_path_init succeeded. */
 uint32_t drc_path_count(const struct drc_path *it);
 
-/* Next point (toolpath_pt conventions: line j or -1 for a link point, index).
+/* Next point (raster_pt conventions: line j or -1 for a link point, index).
  * Returns CP_OK, CP_ERR_DONE, or CP_ERR_NUMERIC for a non-finite point (nothing
  * written, the position unchanged; init has walked every point, so not expected). */
-int drc_path_next(struct drc_path *it, struct toolpath_pt *pt);
+int drc_path_next(struct drc_path *it, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count), bit for bit. CURVE mode: descends the tree
  * along the bits of the index (K inserts) at the next next(). EDGE mode: Lambda and the arc length are

@@ -14,13 +14,13 @@
  *     G_u     = ts (1 - k1 a A - k2 b S) T + (a' A - tw b S) N + (b' S + tw a A) B
  * (ts = f_t' |C'|, tw = ts w). The T component is ts times the sweep regularity
  * g = 1 - k.(G - C) of C.3: g > 0 (checked at init) keeps G_u off the section plane, and
- * n = unit(G_theta x G_u) = unit(b A uT N + a S uT B - (a S uB + b A uN) T) points away
+ * n = cp_v3_unit(G_theta x G_u) = cp_v3_unit(b A uT N + a S uT B - (a S uB + b A uN) T) points away
  * from C (its in-plane part is the ellipse's outward normal times uT > 0).
  *
- * Frames. All four are the projection frame of an axis a: U = unit(a - (a.T) T), V = T x U,
+ * Frames. All four are the projection frame of an axis a: U = cp_v3_unit(a - (a.T) T), V = T x U,
  * rotated by phi: N = cos phi U + sin phi V, B = T x N. N0: a = N0, phi = 0. FIXED: a = +y,
  * phi = -90 deg (N = -V = (T_z, 0, -T_x), B = U = +y exactly when T_y = 0, C.1). FRENET:
- * a = C'' (U = the principal normal, V = T x U = unit(C' x C''), eq. 9; |U|^2 before
+ * a = C'' (U = the principal normal, V = T x U = cp_v3_unit(C' x C''), eq. 9; |U|^2 before
  * normalizing over |a|^2 = |C' x C''|^2 / (|C'| |C''|)^2, the test of C.3). RMF: a = ref,
  * phi from the table. The twist (per arc length) of the projection frame is
  *     U'.V / |C'| = (a'.V - (a.T)(C''.V) / |C'|) / (|a - (a.T) T| |C'|)
@@ -49,61 +49,9 @@
 #define TAN_PI_8 CP_R(0.41421356237309504880)
 #define SAG_MARGIN CP_R(0.9)
 
-/* gsr_init checks c, r and ref as GSR_NUMS consecutive reals, the vector helpers read
- * any struct cp_vec3 as 3 reals */
-#define GSR_NUMS (6u * GSR_FN + 3u)
-CP_STATIC_ASSERT(sizeof(struct cp_vec3) == 3u * sizeof(cp_real), gsr_vec3_is_3_reals);
-/* sec_eval has centre_jet write the 4 vectors of the jet into s->c, t, n, b */
-CP_STATIC_ASSERT(offsetof(struct gsr_sec, b) - offsetof(struct gsr_sec, c) ==
-                     3u * sizeof(struct cp_vec3), gsr_sec_jet_contiguous);
-CP_STATIC_ASSERT(offsetof(struct gsr_cfg, ref) - offsetof(struct gsr_cfg, c) ==
-                     (GSR_NUMS - 3u) * sizeof(cp_real), gsr_cfg_reals_contiguous);
 
 static const struct cp_vec3 ey = {CP_R(0.0), CP_R(1.0), CP_R(0.0)};
 static const struct cp_vec3 zero = {CP_R(0.0), CP_R(0.0), CP_R(0.0)};
-
-/* The vector helpers below forward to the shared ones of cp_math.h (one copy in the
- * image; the same operations in the same order). A struct cp_vec3 is read as 3 reals
- * (the assert above). */
-#define V3(v) ((cp_real *)(v))
-#define CV3(v) ((const cp_real *)(v))
-
-static cp_real dot(const struct cp_vec3 *a, const struct cp_vec3 *b)
-{
-    return cp_v3_dot(CV3(a), CV3(b));
-}
-
-/* o = a x b (o may alias a or b) */
-static void cross(const struct cp_vec3 *a, const struct cp_vec3 *b, struct cp_vec3 *o)
-{
-    cp_v3_cross(CV3(a), CV3(b), V3(o));
-}
-
-/* o = p a + q b (o may alias a or b; p = 1 or q = 0 are exact) */
-static void comb(struct cp_vec3 *o, cp_real p, const struct cp_vec3 *a, cp_real q,
-                 const struct cp_vec3 *b)
-{
-    cp_v3_comb(V3(o), p, CV3(a), q, CV3(b));
-}
-
-/* Short loops of calls kept rolled in size builds (-Os peels them: more bytes). */
-#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
-#define GSR_ROLLED _Pragma("GCC unroll 1")
-#else
-#define GSR_ROLLED
-#endif
-
-/* cp_finite out of line: one copy for the checks of init, sections and points. */
-static CP_NOINLINE int fin(cp_real x)
-{
-    return cp_finite(x);
-}
-
-/* Normalize v (each component times 1/|v|); returns its former length. */
-static cp_real unit(struct cp_vec3 *v)
-{
-    return cp_v3_unit((cp_real *)v);
-}
 
 /* Scalar family at x: d[0], d[3], d[6], d[9] = f, f', f'', f''' (stride 3: one component
  * of a vector jet, see centre_jet and sec_eval). */
@@ -127,14 +75,18 @@ static void sfun(const cp_real *a, cp_real x, cp_real *d)
 }
 
 /* Centre jet at t: j[0] = C, j[1] = C', j[2] = C'', j[3] = C''' from the power-basis
- * coefficients g->cp (sfun writes each axis straight into its component: a struct cp_vec3
- * is 3 reals, the jet 12). */
+ * coefficients g->cp (sfun per axis: d[k][axis] is the k-th derivative). */
 static CP_NOINLINE void centre_jet(const struct gsr *g, cp_real t, struct cp_vec3 *j)
 {
-    unsigned ax;
-    GSR_ROLLED
+    cp_real d[4][3];
+    unsigned ax, k;
     for (ax = 0; ax < 3u; ax++) {
-        sfun(&g->cp[ax * GSR_FN], t, V3(j) + ax);
+        sfun(&g->cp[ax * GSR_FN], t, &d[0][ax]);
+    }
+    for (k = 0; k < 4u; k++) {
+        j[k].x = d[k][0];
+        j[k].y = d[k][1];
+        j[k].z = d[k][2];
     }
 }
 
@@ -149,12 +101,12 @@ struct pframe {
 static cp_real proj(const struct cp_vec3 *a, const struct cp_vec3 *ad, const struct cp_vec3 *T,
                     const struct cp_vec3 *d2, cp_real sp, struct pframe *f)
 {
-    cp_real pa = dot(a, T), q, wl;
-    comb(&f->u, CP_R(1.0), a, -pa, T);
-    q = dot(&f->u, &f->u) / dot(a, a);
-    wl = unit(&f->u);
-    cross(T, &f->u, &f->v);
-    f->w = (dot(ad, &f->v) - pa * dot(d2, &f->v) / sp) / (wl * sp);
+    cp_real pa = cp_v3_dot(a, T), q, wl;
+    cp_v3_comb(&f->u, CP_R(1.0), a, -pa, T);
+    q = cp_v3_dot(&f->u, &f->u) / cp_v3_dot(a, a);
+    wl = cp_v3_unit(&f->u);
+    cp_v3_cross(T, &f->u, &f->v);
+    f->w = (cp_v3_dot(ad, &f->v) - pa * cp_v3_dot(d2, &f->v) / sp) / (wl * sp);
     return q;
 }
 
@@ -182,12 +134,12 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
 {
     const struct gsr_cfg *cf = g->cfg;
     const struct cp_vec3 *ax = &cf->ref, *ad = &zero;
-    struct cp_vec3 d2;
+    struct cp_vec3 jet[4]; /* C, C', C'', C''' (centre_jet) */
+    const struct cp_vec3 *d2 = &jet[2], *d3 = &jet[3];
     struct pframe pf;
     cp_real f[4][3], sp, s2, q, w, ty, cs[2] = {CP_R(1.0), CP_R(0.0)};
     unsigned i;
     int err = CP_OK;
-    GSR_ROLLED
     for (i = 0; i < 3u; i++) { /* f[k][i]: k-th derivative of f_N, f_B, f_t */
         sfun(cf->r[i], u, &f[0][i]);
     }
@@ -196,32 +148,31 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     s->dfn = f[1][0];
     s->dfb = f[1][1];
     s->ft = f[0][2];
-    /* the centre jet C, C', C'', C''' straight into s->c, t, n, b (n and b hold C'' and
-     * C''' until the frame overwrites them: C'' is kept in d2, C''' read by proj first) */
-    centre_jet(g, f[0][2], &s->c);
-    d2 = s->n;
+    centre_jet(g, f[0][2], jet);
+    s->c = jet[0];
+    s->t = jet[1];
     ty = s->t.y;
-    s2 = dot(&s->t, &s->t);
-    sp = unit(&s->t);
+    s2 = cp_v3_dot(&s->t, &s->t);
+    sp = cp_v3_unit(&s->t);
     s->ts = f[1][2] * sp;
     if (g->frame == GSR_FRAME_FRENET) {
-        ax = &d2;
-        ad = &s->b;
+        ax = d2;
+        ad = d3;
     } else if (g->frame == GSR_FRAME_FIXED) {
         ax = &ey;
         cs[0] = CP_R(0.0);
         cs[1] = CP_R(-1.0);
     }
-    q = proj(ax, ad, &s->t, &d2, sp, &pf);
+    q = proj(ax, ad, &s->t, d2, sp, &pf);
     if (g->frame == GSR_FRAME_RMF) {
         cp_sincos(rmf_phi(g, f[0][2]), &cs[1], &cs[0]);
         pf.w = CP_R(0.0);
     }
-    comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
-    cross(&s->t, &s->n, &s->b);
+    cp_v3_comb(&s->n, cs[0], &pf.u, cs[1], &pf.v);
+    cp_v3_cross(&s->t, &s->n, &s->b);
     s->tw = s->ts * pf.w;
-    s->k1 = dot(&d2, &s->n) / s2;
-    s->k2 = dot(&d2, &s->b) / s2;
+    s->k1 = cp_v3_dot(d2, &s->n) / s2;
+    s->k2 = cp_v3_dot(d2, &s->b) / s2;
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
     if (g->frame == GSR_FRAME_FIXED && ty != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
@@ -233,7 +184,7 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
         err = CP_ERR_DEGENERATE;
     } else if (!(q > GSR_EPS * GSR_EPS)) {
         err = g->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
-    } else if (!fin(dot(&s->c, &s->n) + s->tw + w)) {
+    } else if (!cp_finite(cp_v3_dot(&s->c, &s->n) + s->tw + w)) {
         /* C.N is finite iff C and N are (|C| <= ~1e5 mm from the coefficient limits, |N|
          * = 1: no product overflows; an Inf or NaN component makes a product Inf or NaN) */
         err = CP_ERR_NUMERIC;
@@ -260,7 +211,7 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
     for (i = 0; i <= total; i++) {
         t = g->t0 + span * ((cp_real)i / (cp_real)total);
         centre_jet(g, t, j);
-        sp = unit(&j[1]);
+        sp = cp_v3_unit(&j[1]);
         if (!(proj(&g->cfg->ref, &zero, &j[1], &j[2], sp, &pf) > GSR_EPS * GSR_EPS)) {
             return CP_R(-1.0);
         }
@@ -279,18 +230,39 @@ static CP_NOINLINE cp_real rmf_build(struct gsr *g)
             if (i > 0u) {
                 w = cp_fabs(rmf_phi(g, tm) - pm);
                 /* NaN is sticky (w > NaN is false): a NaN error fails CP_ERR_TOL */
-                worst = (w > worst || !fin(w)) ? w : worst;
+                worst = (w > worst || !cp_finite(w)) ? w : worst;
             }
         }
     }
     return worst;
 }
 
+/* A number of the geometry: CP_ERR_NONFINITE (NaN, Inf), CP_ERR_RANGE (|x| > max), else
+ * CP_OK. */
+static int check_num(cp_real x, cp_real max)
+{
+    if (!cp_finite(x)) {
+        return CP_ERR_NONFINITE;
+    }
+    return cp_fabs(x) <= max ? CP_OK : CP_ERR_RANGE;
+}
+
+/* The 3 functions fn[0..2] of GSR_FN numbers each (|w| <= GSR_W_MAX, every other
+ * |number| <= GSR_COEF_MAX), in order: the first failing number's code, else CP_OK. */
+static int check_fns(const cp_real (*fn)[GSR_FN])
+{
+    uint32_t i, k;
+    int err = CP_OK;
+    for (i = 0; i < 3u && err == CP_OK; i++) {
+        for (k = 0; k < GSR_FN && err == CP_OK; k++) {
+            err = check_num(fn[i][k], k == GSR_W ? GSR_W_MAX : GSR_COEF_MAX);
+        }
+    }
+    return err;
+}
+
 int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
 {
-    /* the GSR_NUMS = 45 reals c[3][7], r[3][7], ref (contiguous: the asserts above) */
-    const cp_real *f =
-        (const cp_real *)(const void *)((const char *)cf + offsetof(struct gsr_cfg, c));
     cp_real a[4u * 3u]; /* sfun's output (stride 3): f_t(0), f_t(1) */
     cp_real worst = CP_R(0.0), d1 = CP_R(0.0), rmax = CP_R(0.0);
     struct gsr_sec s;
@@ -304,17 +276,26 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
     g->cfg = cf;
     g->frame = cf->frame;
     g->section = cf->section;
-    for (k = 0; k < GSR_NUMS; k++) {
-        /* the 7 functions (|w| <= GSR_W_MAX), then ref (k % 7 < GSR_W) */
-        if (!fin(f[k])) {
-            return CP_ERR_NONFINITE;
-        }
-        if (!(cp_fabs(f[k]) <= (k % GSR_FN == GSR_W ? GSR_W_MAX : GSR_COEF_MAX))) {
-            return CP_ERR_RANGE;
-        }
-        if (k < 3u * GSR_FN) { /* the centre's numbers, converted below */
-            g->cp[k] = f[k];
-        }
+    /* every number in order: the centre's, the sections', ref (the first failing one
+     * gives the code) */
+    err = check_fns(cf->c);
+    if (err == CP_OK) {
+        err = check_fns(cf->r);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.x, GSR_COEF_MAX);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.y, GSR_COEF_MAX);
+    }
+    if (err == CP_OK) {
+        err = check_num(cf->ref.z, GSR_COEF_MAX);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    for (k = 0; k < 3u * GSR_FN; k++) { /* the centre's numbers, converted below */
+        g->cp[k] = cf->c[k / GSR_FN][k % GSR_FN];
     }
     for (k = 0; k < 3u; k++) {
         /* the centre in the power basis (a Bezier is converted: the cubic family with
@@ -332,7 +313,7 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
               cp_fabs(c[GSR_W]) * (cp_fabs(c[GSR_B]) + cp_fabs(c[GSR_C]));
     }
     g->d1 = d1;
-    if (cf->frame >= GSR_FRAME_N0 && !(dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
+    if (cf->frame >= GSR_FRAME_N0 && !(cp_v3_dot(&cf->ref, &cf->ref) > CP_R(0.0))) {
         return CP_ERR_RANGE;
     }
     sfun(cf->r[2], CP_R(0.0), a);
@@ -355,7 +336,7 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
         }
         rmax = s.fn > rmax ? s.fn : rmax;
         rmax = s.fb > rmax ? s.fb : rmax;
-        if (!(dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
+        if (!(cp_v3_dot(&s.b, &bp) >= CP_R(0.0))) { /* B flipped between samples */
             return cf->frame == GSR_FRAME_FRENET ? CP_ERR_FRENET : CP_ERR_FRAME_REF;
         }
         bp = s.b;
@@ -378,11 +359,11 @@ static void point(const struct gsr_sec *s, cp_real cx, cp_real cy, cp_real ax, c
     cp_real ut = s->ts * (CP_R(1.0) - s->k1 * ax - s->k2 * by);
     cp_real un = s->dfn * cx - s->tw * by;
     cp_real ub = s->dfb * cy + s->tw * ax;
-    comb(p, CP_R(1.0), &s->c, ax, &s->n);
-    comb(p, CP_R(1.0), p, by, &s->b);
-    comb(n, fb * cx * ut, &s->n, fn * cy * ut, &s->b);
-    comb(n, CP_R(1.0), n, -(fn * cy * ub + fb * cx * un), &s->t);
-    (void)unit(n);
+    cp_v3_comb(p, CP_R(1.0), &s->c, ax, &s->n);
+    cp_v3_comb(p, CP_R(1.0), p, by, &s->b);
+    cp_v3_comb(n, fb * cx * ut, &s->n, fn * cy * ut, &s->b);
+    cp_v3_comb(n, CP_R(1.0), n, -(fn * cy * ub + fb * cx * un), &s->t);
+    (void)cp_v3_unit(n);
 }
 
 void gsr_point(const struct gsr_sec *s, cp_real cx, cp_real cy, struct cp_vec3 *p,
@@ -490,7 +471,7 @@ int gsr_arclen_init(struct gsr_arclen *t, cp_real fn, cp_real fb)
     if (t == NULL) {
         return CP_ERR_INVAL;
     }
-    if (!cp_isfinite(fn) || !cp_isfinite(fb)) {
+    if (!cp_finite(fn) || !cp_finite(fb)) {
         return CP_ERR_NONFINITE;
     }
     if (!(fn > CP_R(0.0)) || !(fb > CP_R(0.0))) {
@@ -575,10 +556,10 @@ static CP_NOINLINE cp_real sigma_of(const struct gsr_path *it, cp_real th)
 /* Fixed coordinate of line j (LINES: sig of theta_j, CIRCLES: u = j (link + 1) / gsteps). */
 static cp_real fixed(const struct gsr_path *it, uint32_t j)
 {
-    uint32_t lk = (uint32_t)it->link + 1u;
-    return it->mode == TOOLPATH_LINES
+    uint32_t lk = (uint32_t)it->head.link + 1u;
+    return it->head.mode == RASTER_LINES
                ? sigma_of(it, it->v0 + (cp_real)j * it->dv)
-               : (cp_real)(j * lk) / (cp_real)(it->n > 1u ? (uint32_t)(it->n - 1u) * lk : 1u);
+               : (cp_real)(j * lk) / (cp_real)(it->head.n > 1u ? (uint32_t)(it->head.n - 1u) * lk : 1u);
 }
 
 /* Where point k is: x[0] = u, x[1] = the section parameter sig; line (-1 on a link) and
@@ -588,15 +569,15 @@ static cp_real fixed(const struct gsr_path *it, uint32_t j)
  * running end where line j stopped. */
 static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct raster_at *at)
 {
-    uint32_t c = it->mode == TOOLPATH_LINES;
+    uint32_t c = it->head.mode == RASTER_LINES;
     cp_real a0 = it->s0, a1 = it->s1, f;
-    raster_locate(k, it->steps, it->link, at);
+    raster_locate(k, it->head.steps, it->head.link, at);
     f = fixed(it, at->j);
     if (at->a != 0u) { /* link point a */
-        f += (fixed(it, at->j + 1u) - f) * ((cp_real)at->a / (cp_real)(it->link + 1u));
+        f += (fixed(it, at->j + 1u) - f) * ((cp_real)at->a / (cp_real)(it->head.link + 1u));
     }
     x[c] = f;
-    x[1u - c] = a0 + (a1 - a0) * ((cp_real)at->i / (cp_real)it->steps);
+    x[1u - c] = a0 + (a1 - a0) * ((cp_real)at->i / (cp_real)it->head.steps);
 }
 
 /* Emitted point at x = (u, sig) (surface, tool centre G + r n, or tip) and normal, with
@@ -605,7 +586,7 @@ static void locate(const struct gsr_path *it, uint32_t k, cp_real *x, struct ras
  * (bit equality: both are the same computation whenever they are equal; gsr_path_seek
  * resets the keys), so a ring costs one section and then only its unit
  * points, and a line one unit point. */
-static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
+static int pt_at(struct gsr_path *it, const cp_real *x, struct raster_pt *pt)
 {
     const struct gsr_sec *s = &it->sec;
     cp_real g, ax, by, r;
@@ -627,12 +608,12 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
     by = s->fb * it->cc[1];
     r = it->tool_r;
     point(s, it->cc[0], it->cc[1], ax, by, &pt->p, &pt->n);
-    comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
-    if (it->output == TOOLPATH_OUT_TIP) {
+    cp_v3_comb(&pt->p, CP_R(1.0), &pt->p, r, &pt->n);
+    if (it->output == RASTER_OUT_TIP) {
         pt->p.z -= r;
     }
-    g = CP_R(1.0) - s->k1 * (ax + r * dot(&pt->n, &s->n)) - s->k2 * (by + r * dot(&pt->n, &s->b));
-    if (err == CP_OK && !fin(dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
+    g = CP_R(1.0) - s->k1 * (ax + r * cp_v3_dot(&pt->n, &s->n)) - s->k2 * (by + r * cp_v3_dot(&pt->n, &s->b));
+    if (err == CP_OK && !cp_finite(cp_v3_dot(&pt->p, &pt->p) + g)) { /* |p|^2 <= ~1e11 mm^2 */
         err = CP_ERR_NUMERIC;
     }
     return err != CP_OK || g > CP_R(0.0) ? err : CP_ERR_FOLD;
@@ -644,7 +625,7 @@ static int pt_at(struct gsr_path *it, const cp_real *x, struct toolpath_pt *pt)
  * before the loop. */
 static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
 {
-    struct toolpath_pt a, b, m;
+    struct raster_pt a, b, m;
     cp_real x[2], px[2] = {CP_R(0.0), CP_R(0.0)};
     struct raster_at at;
     int32_t pline = -1;
@@ -652,7 +633,7 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
     int err = gsr_path_seek(it, 0u);
     sag[0] = sag[1] = CP_R(0.0);
     a.p = zero;
-    for (k = 0; k < it->count && err == CP_OK; k++) {
+    for (k = 0; k < it->head.count && err == CP_OK; k++) {
         locate(it, k, x, &at);
         err = pt_at(it, x, &b);
         if (err == CP_OK && k > 0u) {
@@ -660,9 +641,9 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
             px[0] = CP_R(0.5) * (px[0] + x[0]);
             px[1] = CP_R(0.5) * (px[1] + x[1]);
             err = pt_at(it, px, &m);
-            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &a.p);
-            comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &b.p);
-            px[0] = cp_sqrt(dot(&m.p, &m.p));
+            cp_v3_comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &a.p);
+            cp_v3_comb(&m.p, CP_R(1.0), &m.p, CP_R(-0.5), &b.p);
+            px[0] = cp_sqrt(cp_v3_dot(&m.p, &m.p));
             sag[c] = px[0] > sag[c] ? px[0] : sag[c];
         }
         a.p = b.p;
@@ -676,10 +657,11 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
 /* The tolerance search (raster_fit): grow from 8 steps / 1 link segment, aim at and
  * verify with the midpoint sagitta <= SAG_MARGIN tol, at least + 1 per round, an estimate
  * above the maximum tried at the maximum. */
-static const struct raster_rule gsr_rule = {SAG_MARGIN, SAG_MARGIN, 8u, 0u, 31u, 1u};
+static const struct raster_rule gsr_rule = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 8u,
+                                            .pilot = 0u, .grow_shift = 31u, .clamp = 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
-int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct toolpath_cfg *rc)
+int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)
 {
     struct raster_fit fit;
     cp_real sag[2];
@@ -687,7 +669,7 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
     if (it == NULL) {
         return CP_ERR_INVAL;
     }
-    it->count = 0;
+    it->head.count = 0;
     err = gsr_init(&it->g, geom);
     if (err == CP_OK) {
         err = raster_check(rc, CP_PI);
@@ -698,31 +680,31 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
     if (err != CP_OK) {
         return err;
     }
-    it->mode = rc->mode;
+    it->head.mode = rc->mode;
     it->output = rc->output;
-    it->n = rc->n;
+    it->head.n = rc->n;
     it->tool_r = rc->tool_r;
     it->v0 = rc->u0;
-    it->dv = it->n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->n - 1u) : CP_R(0.0);
+    it->dv = it->head.n > 1u ? (rc->u1 - rc->u0) / (cp_real)(it->head.n - 1u) : CP_R(0.0);
     it->s0 = CP_R(0.0); /* LINES: u runs from 0 to 1 */
     it->s1 = CP_R(1.0);
-    if (it->mode == TOOLPATH_CIRCLES) {
+    if (it->head.mode == RASTER_CIRCLES) {
         it->s0 = sigma_of(it, rc->u0);
         it->s1 = sigma_of(it, rc->u1);
     }
     raster_fit_begin(&fit, rc, &gsr_rule);
     err = RASTER_FIT_MORE;
     for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
-        it->steps = (uint16_t)fit.m[0];
-        it->link = (uint16_t)(fit.m[1] - 1u);
-        it->count = raster_count(it->n, fit.m[0], fit.m[1] - 1u);
+        it->head.steps = (uint16_t)fit.m[0];
+        it->head.link = (uint16_t)(fit.m[1] - 1u);
+        it->head.count = raster_count(it->head.n, fit.m[0], fit.m[1] - 1u);
         err = walk(it, sag);
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
     }
     if (err != CP_OK) {
-        it->count = 0;
+        it->head.count = 0;
     }
     /* CP_OK: the last walk (its gsr_path_seek(it, 0)) left k = 0, and the caches it
      * filled are keyed by u and sig, so they stay valid (no second seek) */
@@ -731,37 +713,37 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
 
 uint32_t gsr_path_count(const struct gsr_path *it)
 {
-    return it->count;
+    return it->head.count;
 }
 
 CP_NOINLINE int gsr_path_seek(struct gsr_path *it, uint32_t k)
 {
     it->su = CP_R(-1.0); /* u >= 0: no section cached */
     it->cs = CP_R(8.0);  /* |sig| <= 4: no unit point cached */
-    return raster_seek(&it->k, it->count, k);
+    return raster_seek(&it->head, k);
 }
 
-int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt)
+int gsr_path_next(struct gsr_path *it, struct raster_pt *pt)
 {
     cp_real x[2];
     struct raster_at at;
     int err;
-    if (it->k >= it->count) {
+    if (it->head.k >= it->head.count) {
         return CP_ERR_DONE;
     }
-    locate(it, it->k, x, &at);
+    locate(it, it->head.k, x, &at);
     err = pt_at(it, x, pt);
     pt->t = x[0];
     pt->line = (int16_t)at.line;
     pt->index = (uint16_t)at.index;
-    it->k += err == CP_OK;
+    it->head.k += err == CP_OK;
     return err;
 }
 
 #if CP_REAL_DOUBLE
-CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 800u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 896u, gsr_path_fits_budget);
 CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 640u, gsr_cfg_fits_budget);
 #else
-CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 400u, gsr_path_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct gsr_path) <= 448u, gsr_path_fits_budget);
 CP_STATIC_ASSERT(sizeof(struct gsr_cfg) <= 320u, gsr_cfg_fits_budget);
 #endif

@@ -44,24 +44,24 @@
  * psi - q in [0, 1]; gsr_psi gives psi of an eccentric angle by the closed form
  * v(theta) = (1 + tan((theta' - pi/4)/2) / tan(pi/8)) / 2, theta' = theta - q pi/2.
  *
- * Raster (struct toolpath_cfg, the same request as the canal; u0, u1 = v0, v1 in radians,
+ * Raster (struct raster_cfg, the same request as the canal; u0, u1 = v0, v1 in radians,
  * |v| <= pi):
- *   TOOLPATH_LINES    n longitudinal lines at EVEN eccentric angles theta_j = v0 + j (v1 -
+ *   RASTER_LINES    n longitudinal lines at EVEN eccentric angles theta_j = v0 + j (v1 -
  *                     v0)/(n - 1) (rational form: psi(theta_j), one tangent per line), each
  *                     with steps + 1 points at u_i = i / steps; zigzag (odd lines run u = 1
  *                     -> 0); consecutive lines are linked by `link` points along the ring at
  *                     the line end (uniform in the section parameter).
- *   TOOLPATH_CIRCLES  n rings (sections) at u_c = c (link + 1) / gsteps, gsteps = (n - 1)
+ *   RASTER_CIRCLES  n rings (sections) at u_c = c (link + 1) / gsteps, gsteps = (n - 1)
  *                     (link + 1) (n = 1: u = 0), each with steps + 1 points from v0 to v1
  *                     (zigzag), uniform in the section parameter: the eccentric angle
  *                     (TRIG) or psi (RATIONAL: no trigonometry per point; the angle step
  *                     then varies by the quarter's speed ratio 1.17, C.2). Consecutive rings
  *                     are linked by `link` points along the line at v1 (even c) / v0 (odd c).
- *   count = n (steps + 1) + (n - 1) link. toolpath_pt: p the emitted position, n the unit
+ *   count = n (steps + 1) + (n - 1) link. raster_pt: p the emitted position, n the unit
  *   OUTWARD surface normal (G_theta x G_u, pointing away from C), t = u (surface parameter),
  *   line = line/ring index (-1 on links), index = point index in it (links: 1..link).
  *   Tool (TOOL BALL r): the tool is OUTSIDE the surface (pipes, handles, nozzles):
- *   TOOLPATH_OUT_CENTRE streams G + r n, TOOLPATH_OUT_TIP that centre - r z. Where f_t' = 0
+ *   RASTER_OUT_CENTRE streams G + r n, RASTER_OUT_TIP that centre - r z. Where f_t' = 0
  *   (G2 of C.4 at u = 0, 1) the section plane is tangent to the surface and n = +-T; if its
  *   sign changes along the ring there the tool centre jumps and init fails (CP_ERR_TOL).
  * Step counts: given (steps, link), or derived from tol: rounded up, then the whole stream
@@ -76,7 +76,7 @@
 #ifndef GSR_H
 #define GSR_H
 
-#include "toolpath.h"
+#include "canal_path.h"
 
 enum gsr_centre_kind {
     GSR_CENTRE_POLY = 0,  /* c[axis][0..6] = a0 a1 a2 a3 b c w of x(t), y(t), z(t) */
@@ -276,17 +276,20 @@ cp_real gsr_arclen_frac(const struct gsr_arclen *t, cp_real theta);
 
 /* ---- the toolpath iterator (path.h) ---- */
 struct gsr_path {
-    uint8_t mode, output;    /* enum toolpath_mode, enum toolpath_output */
-    uint16_t n, steps, link; /* lines/rings, steps per line/ring, link points */
-    uint32_t count, k;       /* total points, points emitted (next k) */
+    struct raster_head head; /* mode, n, steps, link, count, k (raster.h) */
+    /* the output */
+    uint8_t output;          /* enum raster_output */
     cp_real tool_r;          /* mm */
+    /* the raster's coordinates */
     cp_real s0, s1;          /* ends of the running coordinate: LINES u = 0, 1; CIRCLES the
                                 section parameter (theta or psi) of v0 and v1 */
     cp_real v0, dv;          /* LINES: theta_j = v0 + j dv, radians */
+    /* the model */
+    struct gsr g;
+    /* caches of the stream */
     cp_real su;              /* u of the cached section (-1: none) */
-    cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */
-    struct gsr g;            /* the model (before sec: its cfg pointer at a short offset) */
     struct gsr_sec sec;      /* the cached section */
+    cp_real cs, cc[2];       /* sig of the cached unit-circle point (8: none), the point */
 };
 
 /* Validate geom (gsr_init) and the raster, derive and verify the step counts, walk the
@@ -305,7 +308,7 @@ struct gsr_path {
  *   CP_ERR_NUMERIC   a non-finite point
  * Returns CP_OK; then gsr_path_next yields exactly gsr_path_count() points. */
 CP_MUST_CHECK int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom,
-                                const struct toolpath_cfg *raster);
+                                const struct raster_cfg *raster);
 
 /* Total points of the path. */
 uint32_t gsr_path_count(const struct gsr_path *it);
@@ -313,7 +316,7 @@ uint32_t gsr_path_count(const struct gsr_path *it);
 /* Next point: CP_OK, or CP_ERR_DONE after the last (any other code: a check of the init
  * walk failed, which is impossible after it since every point is the same computation;
  * kept as a guard, the position does not advance). */
-int gsr_path_next(struct gsr_path *it, struct toolpath_pt *pt);
+int gsr_path_next(struct gsr_path *it, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count; CP_ERR_RANGE otherwise): the next gsr_path_next
  * yields bit for bit what it yielded at k (every point is a function of k alone; the

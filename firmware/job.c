@@ -46,8 +46,8 @@ static void model_defaults(unsigned k, union path_geom *g)
         job_drc_defaults(g);
         break;
 #endif
-    default:
-        g->none = 0;
+    default: /* the canal: job_geom_fill copies j->canal into g at RUN */
+        (void)g;
         break;
     }
 }
@@ -79,7 +79,7 @@ void job_init(struct job *j)
         b[i] = 0u;
     }
     j->cfg.n = 1;
-    j->cfg.link = TOOLPATH_LINK_AUTO;
+    j->cfg.link = RASTER_LINK_AUTO;
     j->cfg.tol = CP_R(0.001);
     j->rxbuf = 128u;
 }
@@ -95,6 +95,23 @@ int job_ready(const struct job *j)
     }
 #endif
     return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
+}
+
+void job_geom_fill(struct job *j)
+{
+    unsigned i;
+    if (j->kind == PATH_CANAL) {
+        j->geom.canal = j->canal;
+    }
+#if PATH_HAVE_DRC
+    if (j->kind == PATH_DRC) { /* the EDGE fillet's radius law: the canal's RADIUS */
+        j->geom.drc.radius = j->canal.radius;
+        for (i = 0; i < 4u; i++) {
+            j->geom.drc.rp[i] = j->canal.rp[i];
+        }
+    }
+#endif
+    (void)i;
 }
 
 /* Every keyword of the job commands, packed: each entry is a lead character, the
@@ -269,27 +286,27 @@ static int canal_command(struct job *j, unsigned c, const struct job_args *a)
     switch (c) {
     case KW_CURVE:
     case KW_RADIUS: {
-        cp_real *dst = c == KW_RADIUS ? j->cfg.surf.rp : j->cfg.surf.cp;
+        cp_real *dst = c == KW_RADIUS ? j->canal.rp : j->canal.cp;
         unsigned cap = c == KW_RADIUS ? 4u : 8u;
         for (i = 0; i < cap; i++) {
             dst[i] = i < a->na ? v[i] : CP_R(0.0);
         }
         if (c == KW_RADIUS) {
-            j->cfg.surf.radius = (uint8_t)k;
+            j->canal.radius = (uint8_t)k;
             j->have |= JOB_HAVE_RADIUS;
         } else {
             if (k == CANAL_ARC || k == CANAL_ELLIPSE) { /* the two angles come last */
                 dst[a->na - 2u] *= CP_DEG2RAD;
                 dst[a->na - 1u] *= CP_DEG2RAD;
             }
-            j->cfg.surf.curve = (uint8_t)k;
+            j->canal.curve = (uint8_t)k;
             j->have |= JOB_HAVE_CURVE;
         }
         return CP_ST_OK;
     }
     case KW_TOOL: /* NONE | BALL r [TIP|CENTRE|CENTER] (u: 0 none, 1 + the option's index) */
         if (k == 0u) {
-            j->cfg.output = TOOLPATH_OUT_SURFACE;
+            j->cfg.output = RASTER_OUT_SURFACE;
             j->cfg.tool_r = CP_R(0.0);
             return CP_ST_OK;
         }
@@ -299,7 +316,7 @@ static int canal_command(struct job *j, unsigned c, const struct job_args *a)
         if (u == 4u) { /* not one of the three */
             return CP_ST_BAD_KEYWORD;
         }
-        j->cfg.output = u > 1u ? TOOLPATH_OUT_CENTRE : TOOLPATH_OUT_TIP;
+        j->cfg.output = u > 1u ? RASTER_OUT_CENTRE : RASTER_OUT_TIP;
         j->cfg.tool_r = v[0];
         return CP_ST_OK;
     case KW_LINES:
@@ -311,8 +328,8 @@ static int canal_command(struct job *j, unsigned c, const struct job_args *a)
             (v[0] == v[1] && u > 1u)) {
             return CP_ST_OUT_OF_RANGE;
         }
-        j->cfg.mode = c == KW_CIRCLES ? TOOLPATH_CIRCLES : TOOLPATH_LINES;
-        j->cfg.span = (c == KW_CIRCLES && k == 0u) ? TOOLPATH_SPAN_ANGLE : TOOLPATH_SPAN_LINES;
+        j->cfg.mode = c == KW_CIRCLES ? RASTER_CIRCLES : RASTER_LINES;
+        j->cfg.span = (c == KW_CIRCLES && k == 0u) ? RASTER_SPAN_ANGLE : RASTER_SPAN_LINES;
         j->cfg.n = (uint16_t)u;
         j->cfg.u0 = v[0] * CP_DEG2RAD;
         j->cfg.u1 = v[1] * CP_DEG2RAD;

@@ -17,7 +17,7 @@
  *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL); a new
  *                             SURFACE starts that model's geometry afresh (path.h)
  * Every command validates its arguments at once; the geometry is validated at RUN
- * (toolpath_init), each failure with its own wire status (cp_status.def).
+ * (canal_path_init), each failure with its own wire status (cp_status.def).
  * A model's own geometry commands (job_<m>.c) need its SURFACE first (error:24).
  */
 #ifndef JOB_H
@@ -56,8 +56,11 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 #define JOB_RUN (-2)
 
 struct job {
-    struct toolpath_cfg cfg; /* raster (every model) and canal geometry, C units (radians) */
-    union path_geom geom;    /* geometry of the other models (the one of `kind`) */
+    struct raster_cfg cfg;  /* raster (every model), C units (radians) */
+    struct canal_cfg canal; /* CURVE and RADIUS (the canal's geometry; RADIUS is also the
+                               radius law of SURFACE DRC's EDGE fillet), C units */
+    union path_geom geom;   /* geometry of the model of `kind` (job_geom_fill: the canal's
+                               and DRC's radius law from `canal` before path_init) */
     cp_real feed;            /* mm/min, 0 = omit F */
     uint16_t rxbuf;          /* machine RX buffer, bytes */
     uint16_t have;           /* JOB_HAVE_* bits */
@@ -121,6 +124,11 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first);
 /* CP_ST_OK if the job has everything its SURFACE needs, else CP_ST_NO_JOB. */
 int job_ready(const struct job *j);
 
+/* Before path_init (proto.c run_start): copy what the model of j->kind takes from the
+ * canal's commands into j->geom: SURFACE CANAL the whole j->canal (CURVE, RADIUS),
+ * SURFACE DRC the radius law (j->canal.radius, rp) of its EDGE fillet. Cannot fail. */
+void job_geom_fill(struct job *j);
+
 /* 1 if the line starts with a job command keyword (CURVE ... CHECKSUM, SURFACE, a
  * model's keyword, RUN, RESUME). */
 int job_is_command(const char *line, size_t len);
@@ -129,7 +137,7 @@ int job_is_command(const char *line, size_t len);
  * CP_WITH_*), "+GSR", "+CHANNEL", "+DRC" in that order, e.g. "CANAL+GSR". */
 const char *job_models(void);
 
-/* Wire status of an enum cp_err returned by toolpath_init. */
+/* Wire status of an enum cp_err returned by canal_path_init. */
 int job_status_of(int cp_err);
 
 #endif /* JOB_H */

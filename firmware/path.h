@@ -2,12 +2,13 @@
  * SPDX-License-Identifier: MIT
  *
  * The stream (proto.c) pulls points from one `struct path`: a tagged union of the
- * models' iterators, each yielding exactly path_count() `struct toolpath_pt` with
- * the conventions of toolpath.h (zigzag lines, link points, fixed counts decided
+ * models' iterators, each yielding exactly path_count() `struct raster_pt` with
+ * the conventions of canal_path.h (zigzag lines, link points, fixed counts decided
  * at init, seek(k) reproducing point k bit for bit). The raster request (mode,
- * n, u0, u1, steps/tol, link, tool, output) is the job's `struct toolpath_cfg`
- * for every model; the canal model also takes its geometry from it (cfg.surf),
- * the other models from `union path_geom`.
+ * n, u0, u1, steps/tol, link, tool, output) is the job's `struct raster_cfg`
+ * for every model (raster.h); the model's geometry is its member of `union path_geom`.
+ * Every iterator starts with a `struct raster_head head` (mode, n, steps, link, count,
+ * k), which the stream header and path_pos read.
  *
  * Models (SURFACE command, docs/PROTOCOL.md):
  *   PATH_CANAL    canal surface touching the floor along a plane curve (seed 000)
@@ -20,11 +21,12 @@
  *   1. firmware/<m>.h: struct <m>_cfg (geometry, plain data) and an iterator
  *      struct <m>_path with
  *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
- *                               const struct toolpath_cfg *raster);
+ *                               const struct raster_cfg *raster);
  *        uint32_t <m>_path_count(const struct <m>_path *);
- *        int      <m>_path_next(struct <m>_path *, struct toolpath_pt *);
+ *        int      <m>_path_next(struct <m>_path *, struct raster_pt *);
  *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
- *      and fields or accessors for k (points emitted), n, steps, link, mode.
+ *      whose first member is `struct raster_head head` (raster.h: mode, n, steps,
+ *      link, count, k; <m>_path_seek via raster_seek).
  *   2. here: include <m>.h, add the cfg to union path_geom and the iterator to
  *      struct path's union, and set PATH_HAVE_<M> to 1.
  *   3. path.c: one case in each switch (init, count, next, seek, info).
@@ -39,7 +41,8 @@
 #ifndef PATH_H
 #define PATH_H
 
-#include "toolpath.h"
+#include "raster.h"
+#include "canal_path.h"
 #include "channel.h"
 #include "gsr.h"
 #include "drc.h"
@@ -59,9 +62,9 @@ enum path_kind {
 #define PATH_HAVE_CHANNEL CP_WITH_CHANNEL
 #define PATH_HAVE_DRC CP_WITH_DRC
 
-/* Geometry of the models other than the canal (the canal's is toolpath_cfg.surf). */
+/* Geometry of the models (the one of the path's kind). */
 union path_geom {
-    uint8_t none; /* no other model compiled in */
+    struct canal_cfg canal;
     struct channel_cfg channel;
     struct gsr_cfg gsr;
     struct drc_cfg drc;
@@ -73,14 +76,14 @@ struct path_info {
     uint16_t n;     /* lines or circles/rings */
     uint16_t steps; /* steps per line (points per line = steps + 1) */
     uint16_t link;  /* link points between consecutive lines */
-    uint8_t mode;   /* enum toolpath_mode: 0 lines, 1 circles/rings */
+    uint8_t mode;   /* enum raster_mode: 0 lines, 1 circles/rings */
 };
 
 struct path {
     /* the iterator first, at offset 0 (its hot fields stay at Thumb's short load/store
      * offsets when reached through the path), then the header */
     union {
-        struct toolpath canal;
+        struct canal_path canal;
         struct channel_path channel;
         struct gsr_path gsr;
         struct drc_path drc;
@@ -89,11 +92,11 @@ struct path {
     struct path_info info; /* valid after a successful path_init */
 };
 
-/* Initialise the iterator of model `kind` on the raster (and, for the canal, the
- * geometry) in `raster` and the geometry in `geom` (NULL for the canal).
+/* Initialise the iterator of model `kind` on the raster in `raster` and the geometry
+ * geom->(the model's member).
  * Errors: CP_ERR_INVAL for a kind that is not compiled in, else the model's init
- * codes (toolpath_init for the canal). On error p->info.count is 0. */
-CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
+ * codes (canal_path_init for the canal). On error p->info.count is 0. */
+CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
                             const union path_geom *geom);
 
 /* Total number of points (0 before a successful init). */
@@ -103,7 +106,7 @@ uint32_t path_count(const struct path *p);
 uint32_t path_pos(const struct path *p);
 
 /* The next point. Returns CP_OK, or CP_ERR_DONE after path_count() points. */
-int path_next(struct path *p, struct toolpath_pt *pt);
+int path_next(struct path *p, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count): the next path_next yields exactly what it
  * yielded the first time at k. Returns CP_OK or CP_ERR_RANGE. */

@@ -11,7 +11,7 @@
  * RESUME k. Real-time bytes (outside FRAMES runs): '?' status report,
  * '!' feed hold, '~' resume, 0x18 abort.
  *
- * RUN validates the job (toolpath_init) and streams it:
+ * RUN validates the job (canal_path_init) and streams it:
  *   GCODE   "G21 G90 G17" then one "G1 X.. Y.. Z.. [F..]" per point, 4 decimals,
  *           optionally "N<n> ... *<cs>" (CHECKSUM ON). The firmware is the sender: it
  *           keeps the bytes of unacknowledged lines <= RXBUF (grbl character

@@ -3,23 +3,20 @@
  */
 #include "raster.h"
 
-int raster_check(const struct toolpath_cfg *c, cp_real umax)
+int raster_check(const struct raster_cfg *c, cp_real umax)
 {
-    if (c == NULL || c->mode > TOOLPATH_CIRCLES || c->output > TOOLPATH_OUT_TIP ||
-        (c->output == TOOLPATH_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
+    if (c == NULL || c->mode > RASTER_CIRCLES || c->output > RASTER_OUT_TIP ||
+        (c->output == RASTER_OUT_SURFACE && c->tool_r != CP_R(0.0))) {
         return CP_ERR_INVAL;
     }
-    /* x * 0 is NaN exactly when x is not finite, else +-0 (no overflow of a sum): the sum
-     * is 0 exactly when all four are finite */
-    if (!(c->u0 * CP_R(0.0) + c->u1 * CP_R(0.0) + c->tol * CP_R(0.0) + c->tool_r * CP_R(0.0) ==
-          CP_R(0.0))) {
+    if (!cp_finite(c->u0) || !cp_finite(c->u1) || !cp_finite(c->tol) || !cp_finite(c->tool_r)) {
         return CP_ERR_NONFINITE;
     }
     if (c->n == 0u || cp_fabs(c->u0) > umax || cp_fabs(c->u1) > umax ||
         (c->u0 == c->u1 && c->n > 1u) ||
         (c->tol != CP_R(0.0) && (c->tol < CP_R(1e-5) || c->tol > CP_R(10.0))) ||
         (c->tol == CP_R(0.0) && c->steps == 0u) ||
-        (c->link != TOOLPATH_LINK_AUTO && c->link > CP_MAX_LINK)) {
+        (c->link != RASTER_LINK_AUTO && c->link > CP_MAX_LINK)) {
         return CP_ERR_RANGE;
     }
     if (c->n > CP_MAX_LINES || c->steps > CP_MAX_STEPS) {
@@ -45,19 +42,19 @@ void raster_locate(uint32_t k, uint32_t steps, uint32_t link, struct raster_at *
     at->index = a ? a : i;
 }
 
-int raster_seek(uint32_t *pos, uint32_t count, uint32_t k)
+int raster_seek(struct raster_head *h, uint32_t k)
 {
-    if (k > count) {
+    if (k > h->count) {
         return CP_ERR_RANGE;
     }
-    *pos = k;
+    h->k = k;
     return CP_OK;
 }
 
-void raster_fit_begin(struct raster_fit *f, const struct toolpath_cfg *c,
+void raster_fit_begin(struct raster_fit *f, const struct raster_cfg *c,
                       const struct raster_rule *rule)
 {
-    unsigned dl = c->link == TOOLPATH_LINK_AUTO && c->n > 1u;
+    unsigned dl = c->link == RASTER_LINK_AUTO && c->n > 1u;
     f->rule = rule;
     f->tol = c->tol > CP_R(0.0) ? c->tol : CP_R(1e-3);
     f->derive = (uint8_t)((unsigned)(c->steps == 0u) | (dl << 1));

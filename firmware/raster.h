@@ -1,16 +1,17 @@
-/* raster.h - the raster plumbing the model iterators share: the checks of a raster
- * request, the zigzag layout of its points, and the search for step/link counts that
- * meet a chord tolerance.
+/* raster.h - what every surface model shares: the raster vocabulary (the request struct
+ * raster_cfg, the streamed point struct raster_pt, the mode/labels/span/output enums and
+ * struct raster_head, the head of every model iterator) and the raster plumbing (the checks
+ * of a raster request, the zigzag layout of its points, the restart position, and the
+ * search for step/link counts that meet a chord tolerance).
  * SPDX-License-Identifier: MIT
  *
- * A raster (struct toolpath_cfg, toolpath.h) is n lines (or rings) of steps + 1 points
+ * A raster (struct raster_cfg) is n lines (or rings) of steps + 1 points
  * each, zigzag (odd lines run backwards), consecutive lines joined by `link` points:
  *
  *   block j (j = 0..n-1) = line j (steps + 1 points) + the link j -> j + 1 (link points,
  *   none after the last line);  count = n (steps + 1) + (n - 1) link.
  *
- * Users: gsr.c, channel.c, drc.c (their *_path_* iterators) and toolpath.c (the canal's
- * raster checks). What a line is, where a point lies and how a sagitta is measured stay
+ * Users: the model iterators canal_path.c, gsr.c, channel.c, drc.c (*_path_*), path.c. What a line is, where a point lies and how a sagitta is measured stay
  * in the models; this module only does the integer and control-flow parts, so every
  * model keeps its own geometry and every function here is small and cannot loop.
  *
@@ -34,23 +35,114 @@
 #ifndef RASTER_H
 #define RASTER_H
 
-#include "toolpath.h"
+#include "cp_math.h"
+
+/* ---- the vocabulary of every model ---- */
+
+/* What the lines of a raster are. */
+enum raster_mode {
+    RASTER_LINES = 0,  /* lines along the surface (canal: family-2 curvature lines), linked
+                          along the rings */
+    RASTER_CIRCLES = 1 /* rings across it (canal: family-1 characteristic circles), linked
+                          along the lines */
+};
+
+/* How u0, u1 label the lines (the canal's choice; every other model: ANGLE). */
+enum raster_labels {
+    /* canal: contact-frame start angle on the first circle, radians, |u| <= pi */
+    RASTER_LABEL_ANGLE = 0,
+    /* canal: w = lambda(t0) = q0 cot(u0/2), dimensionless, |w| <= 1e4 (C itself is w = inf) */
+    RASTER_LABEL_LAMBDA = 1
+};
+
+/* What bounds the circles of RASTER_CIRCLES (the canal's choice; every other model: LINES). */
+enum raster_span {
+    /* the lines that start at u0 and u1: the same patch as LINES */
+    RASTER_SPAN_LINES = 0,
+    /* canal: the fixed contact-frame angles u0..u1 on every circle; links run along
+     * u = const (labels must be ANGLE) */
+    RASTER_SPAN_ANGLE = 1
+};
+
+/* Output of each point. */
+enum raster_output {
+    RASTER_OUT_SURFACE = 0, /* the surface point m (no tool) */
+    RASTER_OUT_CENTRE = 1,  /* ball-end tool centre m - r_tool n (5-axis, robots) */
+    RASTER_OUT_TIP = 2      /* ball-end tool tip: centre - r_tool z (3-axis) */
+};
+
+/* link: derive the link points from tol (or from 1 um when tol == 0). */
+#define RASTER_LINK_AUTO 0xFFFFu
+
+/* The raster request of a run, the same for every model (the model's geometry is its own
+ * struct: canal_cfg, gsr_cfg, channel_cfg, drc_cfg). Plain data; checked by raster_check
+ * and the model's init. */
+struct raster_cfg {
+    /* which lines */
+    uint8_t mode;      /* enum raster_mode */
+    uint8_t labels;    /* enum raster_labels (default ANGLE; LAMBDA: canal only) */
+    uint8_t span;      /* enum raster_span, CIRCLES only (default LINES; ANGLE: canal only) */
+    uint16_t n;        /* lines (LINES) or circles/rings (CIRCLES), 1..CP_MAX_LINES */
+    cp_real u0, u1;    /* bounding lines: start angles on the first circle, radians, |u| <= pi
+                          (or lambda labels, see labels); u0 == u1 allowed only with n == 1 */
+    /* how finely */
+    uint16_t steps;    /* output steps per line/circle (points = steps + 1), 1..CP_MAX_STEPS;
+                          0 = derive from tol */
+    uint16_t substeps; /* canal: Simpson panels per output step, 1..CP_MAX_SUBSTEPS; 0 = derive
+                          from the Lambda error bound (CANAL_PATH_LAMBDA_TOL) */
+    uint16_t link;     /* points of each link move (excluding its ends), 0..CP_MAX_LINK;
+                          RASTER_LINK_AUTO = derive from tol (or 1 um when tol == 0) */
+    cp_real tol;       /* chord tolerance, mm, in [1e-5, 10]; required when steps == 0,
+                          else 0 or the tolerance used for derived link counts */
+    /* what is emitted */
+    uint8_t output;    /* enum raster_output */
+    cp_real tool_r;    /* ball-end tool radius, mm, 0 <= tool_r < the model's bound (canal:
+                          min R); 0 with RASTER_OUT_SURFACE */
+};
+
+/* One streamed point, every model. */
+struct raster_pt {
+    struct cp_vec3 p; /* emitted position, mm (surface point, tool centre or tool tip) */
+    struct cp_vec3 n; /* unit surface normal (canal: out of the sphere) */
+    cp_real t;        /* the model's curve parameter of the point */
+    int16_t line;     /* line (LINES) or circle/ring (CIRCLES) index j; -1 for a link point */
+    uint16_t index;   /* on a line: position i along it (0..steps, the line's running
+                         coordinate, zigzag applied); link points: 1..link in travel order */
+};
+
+/* The head every model iterator starts with (its first member, `head`): the raster's
+ * shape, fixed by the model's init, and the position of the stream. raster_seek moves the
+ * position; path.c reads the shape for the stream header. */
+struct raster_head {
+    /* the shape (valid after a successful init) */
+    uint8_t mode;   /* enum raster_mode */
+    uint16_t n;     /* lines or circles/rings, 1..CP_MAX_LINES */
+    uint32_t steps; /* segments per line (points: steps + 1), 1..CP_MAX_STEPS; 32 bits: a
+                       model's init walks may double it (channel: up to 2 CP_MAX_STEPS =
+                       131070) */
+    uint16_t link;  /* link points between consecutive lines, 0..CP_MAX_LINK (init walks:
+                       up to 2 CP_MAX_LINK + 1) */
+    uint32_t count; /* points of the whole path, raster_count(n, steps, link); 0 until the
+                       model's init succeeded */
+    /* the position */
+    uint32_t k;     /* points emitted so far = index of the next point, 0..count */
+};
 
 /* ---- checks ---- */
 
 /* Check the raster fields every model uses, in this order (the first failing group
  * gives the code; a model checks its own extras after this, see its header):
- *   CP_ERR_INVAL     c NULL, mode > TOOLPATH_CIRCLES, output > TOOLPATH_OUT_TIP, or
- *                    tool_r != 0 with TOOLPATH_OUT_SURFACE (NaN included)
+ *   CP_ERR_INVAL     c NULL, mode > RASTER_CIRCLES, output > RASTER_OUT_TIP, or
+ *                    tool_r != 0 with RASTER_OUT_SURFACE (NaN included)
  *   CP_ERR_NONFINITE u0, u1, tol or tool_r NaN or Inf
  *   CP_ERR_RANGE     n == 0, |u0| or |u1| > umax, u0 == u1 with n > 1, tol != 0 outside
  *                    [1e-5, 10] mm, steps == 0 with tol == 0 (nothing to derive steps
- *                    from), link > CP_MAX_LINK (other than TOOLPATH_LINK_AUTO)
+ *                    from), link > CP_MAX_LINK (other than RASTER_LINK_AUTO)
  *   CP_ERR_TOO_MANY  n > CP_MAX_LINES, steps > CP_MAX_STEPS
  *   CP_ERR_TOOL      tool_r < 0
  * umax > 0: bound of |u0|, |u1| (CP_PI for angle labels). Returns CP_OK otherwise.
  * Not checked here: labels, span, substeps (canal only), the tool against the surface. */
-CP_MUST_CHECK int raster_check(const struct toolpath_cfg *c, cp_real umax);
+CP_MUST_CHECK int raster_check(const struct raster_cfg *c, cp_real umax);
 
 /* ---- layout ---- */
 
@@ -66,16 +158,17 @@ struct raster_at {
                        0..steps, zigzag applied (odd j: steps - r). On a link: the end where
                        line j stopped (steps for even j, 0 for odd j) */
     uint32_t a;     /* link point number 1..link (travel order); 0 on a line */
-    int32_t line;   /* toolpath_pt.line: j on a line, -1 on a link */
-    uint32_t index; /* toolpath_pt.index: i on a line, a on a link */
+    int32_t line;   /* raster_pt.line: j on a line, -1 on a link */
+    uint32_t index; /* raster_pt.index: i on a line, a on a link */
 };
 
 /* Point k (0 <= k; k < count for a point of the stream) of the raster (steps >= 1,
  * link): fills at. Cost: one division. Cannot fail. */
 void raster_locate(uint32_t k, uint32_t steps, uint32_t link, struct raster_at *at);
 
-/* Restart position: *pos = k if k <= count (CP_OK), else CP_ERR_RANGE (*pos unchanged). */
-CP_MUST_CHECK int raster_seek(uint32_t *pos, uint32_t count, uint32_t k);
+/* Restart position of an iterator: h->k = k if k <= h->count (CP_OK), else CP_ERR_RANGE
+ * (h unchanged). */
+CP_MUST_CHECK int raster_seek(struct raster_head *h, uint32_t k);
 
 /* ---- step and link counts from the chord tolerance ---- */
 
@@ -115,9 +208,9 @@ struct raster_fit {
 
 /* Start a search for a raster c that passed raster_check: steps derived when c->steps == 0
  * (first m[0] = rule->start), else m[0] = c->steps; link derived when c->link ==
- * TOOLPATH_LINK_AUTO and c->n > 1 (first m[1] = 1), else m[1] = link + 1 (1 when n == 1).
+ * RASTER_LINK_AUTO and c->n > 1 (first m[1] = 1), else m[1] = link + 1 (1 when n == 1).
  * Cannot fail. */
-void raster_fit_begin(struct raster_fit *f, const struct toolpath_cfg *c,
+void raster_fit_begin(struct raster_fit *f, const struct raster_cfg *c,
                       const struct raster_rule *rule);
 
 /* The sagittas measured on a walk with the counts in m[]: sag[0] of the line/ring segments,

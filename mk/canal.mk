@@ -1,7 +1,7 @@
 # mk/canal.mk - host tools of the canal core: demo renderer and accuracy bench.
 # SPDX-License-Identifier: MIT
 
-CANAL_FW := firmware/canal.c firmware/toolpath.c firmware/cp_math.c
+CANAL_FW := firmware/canal.c firmware/canal_path.c firmware/cp_math.c
 TOOL_CFLAGS := -std=c99 -O2 -Wall -Wextra -Werror -D_GNU_SOURCE $(FPFLAGS) -Ifirmware -Ihal -Ibench
 
 $(BUILD)/host/canal_demo: tools/canal_demo.c $(CANAL_FW) $(wildcard firmware/*.h)
@@ -40,11 +40,11 @@ guard-docs:
 ## sizes: sizeof of every firmware context on the M4F (float) and the host double build
 sizes: $(BUILD)/m4f/sizes_probe.o $(BUILD)/hostd/sizes_probe.o
 	@echo "context sizes (bytes)        M4F float   host double"
-	$(Q)for s in toolpath canal gsr_path channel_path drc_path path path_geom job frame_rx proto; do \
+	$(Q)for s in canal_path canal gsr_path channel_path drc_path path path_geom job frame_rx proto; do \
 	    a=$$(arm-none-eabi-nm -S $(BUILD)/m4f/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    b=$$(nm -S $(BUILD)/hostd/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    printf "  struct %-20s %9d   %11d\n" $$s $$((0x$$a)) $$((0x$$b)); done
-	@echo "  (struct toolpath <= $$(sed -n 's/^#define CP_TOOLPATH_BUDGET \([0-9]*\)$$/\1/p' firmware/cp_config.h) bytes in the float build: static assert in toolpath.c)"
+	@echo "  (struct canal_path <= $$(sed -n 's/^#define CP_CANAL_PATH_BUDGET \([0-9]*\)$$/\1/p' firmware/cp_config.h) bytes in the float build: static assert in canal_path.c)"
 
 $(BUILD)/m4f/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
 	@mkdir -p $(@D)

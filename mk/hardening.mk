@@ -9,7 +9,7 @@
 #   soak        >= 1e6 points natively + >= 1e5 under QEMU, every point judged, one
 #               seeded random fault per session (host_sim/soak.sh)        word "soak"
 #   soak-quick  the same with a small fraction of the sessions (< 40 s)   word "soak"
-#   maxpoint    max/mean/min instructions per toolpath_next on QEMU       word "maxpoint"
+#   maxpoint    max/mean/min instructions per canal_path_next on QEMU       word "maxpoint"
 #   stack-soak  painted stack of fw.elf after soak-like sessions and the fuzz corpus
 #               replay, next to the static worst path of `make stack`    word "stack-soak"
 
@@ -27,7 +27,7 @@ soak: $(BUILD)/host/fw_native $(BUILD)/host/host_sim $(M4F)/fw.elf
 soak-quick: $(BUILD)/host/fw_native $(BUILD)/host/host_sim $(M4F)/fw.elf
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) SOAK_SEED=$(SOAK_SEED) $(NICE) sh host_sim/soak.sh quick
 
-## maxpoint: worst-case instructions per toolpath_next over whole jobs on QEMU, run twice (word "maxpoint")
+## maxpoint: worst-case instructions per canal_path_next over whole jobs on QEMU, run twice (word "maxpoint")
 # (timeout 600 per QEMU run: one run takes about 1 s unloaded, 2026-11-26; the rule of
 # mk/m4f.mk is >= 5x. The counts are -icount instructions, not wall-clock.)
 maxpoint: $(M4F)/maxpoint.elf

@@ -11,7 +11,7 @@
 
 #include "ref_canal.h"
 #include "test.h"
-#include "toolpath.h"
+#include "canal_path.h"
 
 #define PI_D 3.14159265358979323846
 
@@ -57,22 +57,24 @@ static const struct shape shapes[SH_COUNT] = {
      96, 8},
 };
 
-static void shape_cfg(const struct shape *s, struct toolpath_cfg *c)
+static void shape_cfg(const struct shape *s, struct canal_cfg *g, struct raster_cfg *c)
 {
-    static const struct toolpath_cfg zero;
+    static const struct raster_cfg zero;
+    static const struct canal_cfg gzero;
     int i;
     *c = zero;
-    c->surf.curve = s->curve;
-    c->surf.radius = s->radius;
+    *g = gzero;
+    g->curve = s->curve;
+    g->radius = s->radius;
     for (i = 0; i < 8; i++) {
-        c->surf.cp[i] = (cp_real)s->cp[i];
+        g->cp[i] = (cp_real)s->cp[i];
     }
     for (i = 0; i < 4; i++) {
-        c->surf.rp[i] = (cp_real)s->rp[i];
+        g->rp[i] = (cp_real)s->rp[i];
     }
-    c->mode = TOOLPATH_LINES;
-    c->output = TOOLPATH_OUT_SURFACE;
-    c->labels = TOOLPATH_LABEL_ANGLE;
+    c->mode = RASTER_LINES;
+    c->output = RASTER_OUT_SURFACE;
+    c->labels = RASTER_LABEL_ANGLE;
     c->n = s->n;
     c->u0 = (cp_real)s->u0;
     c->u1 = (cp_real)s->u1;
@@ -98,7 +100,7 @@ static void ref_from(struct ref_canal *rc, const struct canal *s)
     ref_canal_set(rc, s->curve, s->radius, cp, rp);
 }
 
-static double line_u0(const struct toolpath_cfg *c, int j)
+static double line_u0(const struct raster_cfg *c, int j)
 {
     if (c->n < 2u) {
         return (double)c->u0;
@@ -203,7 +205,8 @@ static double wrap2pi(double a)
 
 int test_canal_vectors(void)
 {
-    struct toolpath_cfg cfg;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
     struct canal c;
     struct canal_jet j;
     struct canal_frame f, f0;
@@ -212,8 +215,8 @@ int test_canal_vectors(void)
     double m[3], nn[3], fw_worst = 0.0, ref_worst = 0.0, refu_worst = 0.0;
     double lam_cache[3] = {0.0, 0.0, 0.0}; /* pi/4, pi/2, pi */
     int i;
-    shape_cfg(&shapes[SH_PAPER], &cfg);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
+    shape_cfg(&shapes[SH_PAPER], &surf, &cfg);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
     /* the reference uses the exact example (double pi), not the float copy */
     {
         static const double cp[8] = {0.0, 0.0, 3.0, 0.0, 2.0 * PI_D, 0, 0, 0};
@@ -294,11 +297,12 @@ int test_canal_ref_selfcheck(void)
     int si, k;
     double worst = 0.0;
     for (si = 0; si < SH_COUNT; si++) {
-        struct toolpath_cfg cfg;
+        struct raster_cfg cfg;
+        struct canal_cfg surf;
         struct canal c;
         struct ref_canal rc;
-        shape_cfg(&shapes[si], &cfg);
-        CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
+        shape_cfg(&shapes[si], &surf, &cfg);
+        CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
         ref_from(&rc, &c);
         for (k = 0; k <= 8; k++) {
             double t = rc.t0 + (rc.t1 - rc.t0) * (0.03 + 0.94 * k / 8.0);
@@ -379,16 +383,17 @@ int test_canal_ref_selfcheck(void)
  * the same t. */
 static int ref_compare(int si, double *maxerr, double *maxnerr)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt;
+    static struct canal_path tp;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt;
     struct ref_canal rc;
     struct ref_line rl[MAXL];
     uint32_t fam2 = 0, links = 0;
     int j;
-    shape_cfg(&shapes[si], &cfg);
+    shape_cfg(&shapes[si], &surf, &cfg);
     CHECK(cfg.n <= MAXL);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
     ref_from(&rc, &tp.surf);
     CHECK((double)tp.surf.t0 == rc.t0 && (double)tp.surf.t1 == rc.t1);
     for (j = 0; j < cfg.n; j++) {
@@ -396,7 +401,7 @@ static int ref_compare(int si, double *maxerr, double *maxnerr)
     }
     *maxerr = 0.0;
     *maxnerr = 0.0;
-    while (toolpath_next(&tp, &pt) == CP_OK) {
+    while (canal_path_next(&tp, &pt) == CP_OK) {
         double m[3], nn[3], e, en;
         if (pt.line < 0) {
             links++;
@@ -415,8 +420,8 @@ static int ref_compare(int si, double *maxerr, double *maxnerr)
         }
         fam2++;
     }
-    CHECK_EQ_INT(fam2, (uint32_t)cfg.n * (tp.steps + 1u));
-    CHECK_EQ_INT(links, (uint32_t)(cfg.n - 1u) * tp.link);
+    CHECK_EQ_INT(fam2, (uint32_t)cfg.n * (tp.head.steps + 1u));
+    CHECK_EQ_INT(links, (uint32_t)(cfg.n - 1u) * tp.head.link);
     return 0;
 }
 
@@ -471,34 +476,35 @@ int test_canal_ref_cwarc(void)
  * on the paper's example at 256 steps, < 1e-5 deg on the other shapes. */
 int test_canal_ref_orthogonality(void)
 {
-    static struct toolpath tp;
+    static struct canal_path tp;
     static double buf[CP_MAX_STEPS > 256 ? 257 : CP_MAX_STEPS + 1][3];
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt;
     struct ref_canal rc;
     int si;
     for (si = 0; si < SH_COUNT; si++) {
         double worst = 0.0;
         int cur = -1;
         unsigned i;
-        shape_cfg(&shapes[si], &cfg);
+        shape_cfg(&shapes[si], &surf, &cfg);
         cfg.link = 0;
         /* 256 steps: the stencil's truncation (h^4) is <= 2e-3 deg on the paper's example
            and the float noise of the points (~1 ulp / (12 h |m'|)) stays below 1e-3 deg */
         cfg.steps = 256;
         cfg.substeps = 2;
-        CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+        CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
         ref_from(&rc, &tp.surf);
         for (;;) {
-            int rcode = toolpath_next(&tp, &pt);
+            int rcode = canal_path_next(&tp, &pt);
             if (rcode == CP_OK && pt.line < 0) {
                 continue;
             }
             if (rcode != CP_OK || pt.line != cur) {
                 if (cur >= 0) {
                     /* line cur complete in buf[0..steps] by index */
-                    double h = ((double)tp.surf.t1 - (double)tp.surf.t0) / tp.steps;
-                    for (i = 2; i + 2u <= tp.steps; i++) {
+                    double h = ((double)tp.surf.t1 - (double)tp.surf.t0) / tp.head.steps;
+                    for (i = 2; i + 2u <= tp.head.steps; i++) {
                         double d[3], cen[3], ax[3], e[3], r, dd = 0.0, ee = 0.0, de = 0.0, ang;
                         double t = (double)tp.surf.t0 + h * i;
                         int k;
@@ -524,7 +530,7 @@ int test_canal_ref_orthogonality(void)
                 }
                 cur = pt.line;
             }
-            CHECK(pt.index <= tp.steps);
+            CHECK(pt.index <= tp.head.steps);
             vec_of(&pt.p, buf[pt.index]);
         }
         TEST_NOTE("%s: orthogonality line/circle max deviation %.2e deg (%s)\n", shapes[si].name,
@@ -538,25 +544,26 @@ int test_canal_ref_orthogonality(void)
 
 int test_canal_contact_curve(void)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt;
+    static struct canal_path tp;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt;
     struct ref_canal rc;
     int si;
     for (si = 0; si < SH_COUNT; si++) {
         int j0 = -1, j;
         uint32_t seen = 0;
         double zmax = 0.0, dmax = 0.0;
-        shape_cfg(&shapes[si], &cfg);
+        shape_cfg(&shapes[si], &surf, &cfg);
         for (j = 0; j < cfg.n; j++) {
             if (line_u0(&cfg, j) == 0.0) {
                 j0 = j;
             }
         }
         CHECK(j0 >= 0); /* every shape's band contains the line u0 = 0 */
-        CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+        CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
         ref_from(&rc, &tp.surf);
-        while (toolpath_next(&tp, &pt) == CP_OK) {
+        while (canal_path_next(&tp, &pt) == CP_OK) {
             struct ref_jet rj;
             double dx, dy, d;
             if (pt.line != j0) {
@@ -570,7 +577,7 @@ int test_canal_contact_curve(void)
             dmax = d > dmax ? d : dmax;
             seen++;
         }
-        CHECK_EQ_INT(seen, tp.steps + 1u);
+        CHECK_EQ_INT(seen, tp.head.steps + 1u);
         TEST_NOTE("%s: contact line u0 = 0: max |z| %.2g mm, max |xy - C| %.2g mm\n",
                   shapes[si].name, zmax, dmax);
         CHECK(zmax <= 1e-4);
@@ -590,21 +597,22 @@ int test_canal_contact_curve(void)
 /* Tube (R const) on a circle: every family-2 line is a circle of latitude. */
 int test_canal_torus(void)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt;
+    static struct canal_path tp;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt;
     double zlo[MAXL], zhi[MAXL], rlo[MAXL], rhi[MAXL], worst = 0.0;
     int j;
     static const struct shape torus = {"torus", CANAL_ARC, CANAL_R_CONST,
                                        {0.0, 0.0, 12.0, 0.5, 0.5 + 2.0 * PI_D - 0.25},
                                        {3.0}, -1.5, 1.5, 4, 128, 2};
-    shape_cfg(&torus, &cfg);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    shape_cfg(&torus, &surf, &cfg);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
     for (j = 0; j < MAXL; j++) {
         zlo[j] = rlo[j] = 1e30;
         zhi[j] = rhi[j] = -1e30;
     }
-    while (toolpath_next(&tp, &pt) == CP_OK) {
+    while (canal_path_next(&tp, &pt) == CP_OK) {
         double r;
         if (pt.line < 0) {
             continue;
@@ -631,32 +639,33 @@ int test_canal_torus(void)
 /* Cone: straight C with a LINEAR radius; every family-2 line is a straight ruling. */
 int test_canal_cone(void)
 {
-    static struct toolpath tp;
+    static struct canal_path tp;
     static double buf[65][3];
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt;
     double worst = 0.0, size = 0.0, tol;
     int j;
     static const struct shape cone = {"cone", CANAL_LINE, CANAL_R_LINEAR, {-4.0, 2.0, 36.0, 12.0},
                                       {3.0, 8.0}, -1.0, 1.0, 5, 64, 2};
-    shape_cfg(&cone, &cfg);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    shape_cfg(&cone, &surf, &cfg);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
     for (j = 0; j < cfg.n; j++) {
         unsigned i;
         double a[3], b[3];
         /* collect line j in index order */
         do {
-            CHECK_EQ_INT(toolpath_next(&tp, &pt), CP_OK);
+            CHECK_EQ_INT(canal_path_next(&tp, &pt), CP_OK);
             if (pt.line == j) {
                 vec_of(&pt.p, buf[pt.index]);
                 size = fmax(size, fmax(fabs(buf[pt.index][0]), fmax(fabs(buf[pt.index][1]), fabs(buf[pt.index][2]))));
             }
-        } while (pt.line != j || pt.index != ((j & 1) ? 0u : tp.steps));
+        } while (pt.line != j || pt.index != ((j & 1) ? 0u : tp.head.steps));
         for (i = 0; i < 3; i++) {
             a[i] = buf[0][i];
-            b[i] = buf[tp.steps][i];
+            b[i] = buf[tp.head.steps][i];
         }
-        for (i = 1; i < tp.steps; i++) {
+        for (i = 1; i < tp.head.steps; i++) {
             worst = fmax(worst, seg_dist(buf[i], a, b));
         }
     }
@@ -737,29 +746,30 @@ static double link_sagitta(const struct ref_canal *rc, double t, const double pa
 static int chord_run(int si, cp_real tol, double *sag_line, double *sag_link, unsigned *steps,
                      unsigned *link)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt, prev;
+    static struct canal_path tp;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt, prev;
     struct ref_canal rc;
     struct ref_line rl[2], before;
     double pa[3], pb[3];
     int j, have = 0;
-    shape_cfg(&shapes[si], &cfg);
+    shape_cfg(&shapes[si], &surf, &cfg);
     cfg.n = 2; /* the two bounding lines of the band and the link between them */
     cfg.steps = 0;
     cfg.substeps = 0;
-    cfg.link = TOOLPATH_LINK_AUTO;
+    cfg.link = RASTER_LINK_AUTO;
     cfg.tol = tol;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
-    *steps = tp.steps;
-    *link = tp.link;
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
+    *steps = tp.head.steps;
+    *link = tp.head.link;
     ref_from(&rc, &tp.surf);
     for (j = 0; j < 2; j++) {
         ref_line_start(&rl[j], &rc, rc.t0, line_u0(&cfg, j));
     }
     *sag_line = 0.0;
     *sag_link = 0.0;
-    while (toolpath_next(&tp, &pt) == CP_OK) {
+    while (canal_path_next(&tp, &pt) == CP_OK) {
         vec_of(&pt.p, pb);
         if (pt.line >= 0) {
             struct ref_line *l = &rl[pt.line];
@@ -821,7 +831,8 @@ int test_canal_chord_tol(void)
  * fixed-angle band regular for all t: -0.5636 < u < 0.2926). */
 int test_canal_api_misc(void)
 {
-    struct toolpath_cfg cfg;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
     struct canal c;
     struct canal_jet j;
     struct canal_frame f;
@@ -829,8 +840,8 @@ int test_canal_api_misc(void)
     double worst_c = 0.0, worst_a = 0.0;
     int si, k;
     for (si = 0; si < SH_COUNT; si++) {
-        shape_cfg(&shapes[si], &cfg);
-        CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
+        shape_cfg(&shapes[si], &surf, &cfg);
+        CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
         ref_from(&rc, &c);
         for (k = 0; k <= 6; k++) {
             double t = rc.t0 + (rc.t1 - rc.t0) * k / 6.0, cen[3], ax[3], r, e;
@@ -856,8 +867,8 @@ int test_canal_api_misc(void)
     CHECK(worst_c <= 200.0 * (double)CP_REAL_EPS * 32.0);
     CHECK(worst_a <= 20.0 * (double)CP_REAL_EPS);
     /* regularity on the paper's example */
-    shape_cfg(&shapes[SH_PAPER], &cfg);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
+    shape_cfg(&shapes[SH_PAPER], &surf, &cfg);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
     canal_jet(&c, (cp_real)(PI_D / 2), &j);
     canal_frame(&j, &f);
     CHECK(canal_regularity(&f, CP_R(6.70), CP_R(1.0), CP_R(0.0)) <= CP_R(0.0));
@@ -898,172 +909,202 @@ int test_canal_api_misc(void)
 
 int test_canal_rejects(void)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg, base;
+    static struct canal_path tp;
+    struct raster_cfg cfg, base;
+    struct canal_cfg surf, surf_base;
     struct canal c;
-    shape_cfg(&shapes[SH_PAPER], &base);
+    shape_cfg(&shapes[SH_PAPER], &surf_base, &base);
     base.steps = 64;
     base.substeps = 4;
     cfg = base;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    surf = surf_base;
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
     /* CP_ERR_INVAL: kinds out of range, tool radius with a surface output */
     cfg = base;
-    cfg.surf.curve = 9;
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_INVAL);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_INVAL);
+    surf = surf_base;
+    surf.curve = 9;
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_INVAL);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_INVAL);
     cfg = base;
-    cfg.surf.radius = 4;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_INVAL);
+    surf = surf_base;
+    surf.radius = 4;
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_INVAL);
     cfg = base;
+    surf = surf_base;
     cfg.mode = 2;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_INVAL);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_INVAL);
     /* CP_ERR_NONFINITE: NaN / Inf in a curve, radius or path parameter */
     cfg = base;
-    cfg.surf.cp[2] = (cp_real)NAN;
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_NONFINITE);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_NONFINITE);
+    surf = surf_base;
+    surf.cp[2] = (cp_real)NAN;
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_NONFINITE);
     cfg = base;
-    cfg.surf.rp[1] = (cp_real)INFINITY;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_NONFINITE);
+    surf = surf_base;
+    surf.rp[1] = (cp_real)INFINITY;
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_NONFINITE);
     cfg = base;
+    surf = surf_base;
     cfg.u1 = (cp_real)NAN;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_NONFINITE);
     cfg = base;
+    surf = surf_base;
     cfg.tol = (cp_real)NAN;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_NONFINITE);
     cfg = base;
-    cfg.output = TOOLPATH_OUT_CENTRE;
+    surf = surf_base;
+    cfg.output = RASTER_OUT_CENTRE;
     cfg.tool_r = (cp_real)NAN;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_NONFINITE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_NONFINITE);
     /* parameters the kinds do not use are ignored ("any USED parameter") */
     cfg = base;
-    cfg.surf.cp[5] = (cp_real)NAN; /* ARC uses cp[0..4] */
-    cfg.surf.rp[3] = (cp_real)NAN; /* COS uses rp[0..2] */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
+    surf = surf_base;
+    surf.cp[5] = (cp_real)NAN; /* ARC uses cp[0..4] */
+    surf.rp[3] = (cp_real)NAN; /* COS uses rp[0..2] */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
     /* CP_ERR_RANGE: coordinate too large, |u| > pi */
     cfg = base;
-    cfg.surf.cp[2] = CP_R(2.0e4);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    surf = surf_base;
+    surf.cp[2] = CP_R(2.0e4);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg = base;
+    surf = surf_base;
     cfg.u1 = CP_R(3.5);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg = base;
-    cfg.surf.cp[4] = CP_R(6.5); /* sweep > 2 pi */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
+    surf = surf_base;
+    surf.cp[4] = CP_R(6.5); /* sweep > 2 pi */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
     cfg = base;
-    cfg.surf.cp[2] = CP_R(-3.0); /* ARC r < 0 (r == 0: test_canal_rejects_zero_size) */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
+    surf = surf_base;
+    surf.cp[2] = CP_R(-3.0); /* ARC r < 0 (r == 0: test_canal_rejects_zero_size) */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
     cfg = base;
-    cfg.surf.rp[2] = CP_R(65.0); /* |k| > 64 */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
-    shape_cfg(&shapes[SH_ELLIPSE], &cfg);
-    cfg.surf.cp[3] = CP_R(-12.0); /* B < 0 */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
+    surf = surf_base;
+    surf.rp[2] = CP_R(65.0); /* |k| > 64 */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
+    shape_cfg(&shapes[SH_ELLIPSE], &surf, &cfg);
+    surf.cp[3] = CP_R(-12.0); /* B < 0 */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
     cfg = base;
+    surf = surf_base;
     cfg.n = 0;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg = base;
+    surf = surf_base;
     cfg.u1 = cfg.u0; /* u0 == u1 with n > 1 */
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg = base;
+    surf = surf_base;
     cfg.steps = 0; /* derive from tol, but tol == 0 */
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg.tol = CP_R(20.0); /* tol > 10 mm */
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     cfg = base;
+    surf = surf_base;
     cfg.link = CP_MAX_LINK + 1;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RANGE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RANGE);
     /* CP_ERR_EMPTY: a0 == a1 */
     cfg = base;
-    cfg.surf.cp[4] = cfg.surf.cp[3];
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_EMPTY);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_EMPTY);
+    surf = surf_base;
+    surf.cp[4] = surf.cp[3];
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_EMPTY);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_EMPTY);
     /* CP_ERR_DEGENERATE: LINE with P0 == P1; Bezier with P0 == P1 (C'(0) = 0) */
-    shape_cfg(&shapes[SH_LINE], &cfg);
-    cfg.surf.cp[2] = cfg.surf.cp[0];
-    cfg.surf.cp[3] = cfg.surf.cp[1];
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_DEGENERATE);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_DEGENERATE);
-    shape_cfg(&shapes[SH_BEZIER], &cfg);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
-    cfg.surf.cp[2] = cfg.surf.cp[0];
-    cfg.surf.cp[3] = cfg.surf.cp[1];
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_DEGENERATE);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_DEGENERATE);
+    shape_cfg(&shapes[SH_LINE], &surf, &cfg);
+    surf.cp[2] = surf.cp[0];
+    surf.cp[3] = surf.cp[1];
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_DEGENERATE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_DEGENERATE);
+    shape_cfg(&shapes[SH_BEZIER], &surf, &cfg);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
+    surf.cp[2] = surf.cp[0];
+    surf.cp[3] = surf.cp[1];
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_DEGENERATE);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_DEGENERATE);
     /* ... and an interior cusp: P1 = P2 on a symmetric "hairpin" gives C'(1/2) = 0 */
-    shape_cfg(&shapes[SH_BEZIER], &cfg);
-    cfg.surf.cp[0] = CP_R(0.0);
-    cfg.surf.cp[1] = CP_R(0.0);
-    cfg.surf.cp[2] = CP_R(20.0);
-    cfg.surf.cp[3] = CP_R(10.0);
-    cfg.surf.cp[4] = CP_R(0.0);
-    cfg.surf.cp[5] = CP_R(10.0);
-    cfg.surf.cp[6] = CP_R(20.0);
-    cfg.surf.cp[7] = CP_R(0.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_DEGENERATE);
+    shape_cfg(&shapes[SH_BEZIER], &surf, &cfg);
+    surf.cp[0] = CP_R(0.0);
+    surf.cp[1] = CP_R(0.0);
+    surf.cp[2] = CP_R(20.0);
+    surf.cp[3] = CP_R(10.0);
+    surf.cp[4] = CP_R(0.0);
+    surf.cp[5] = CP_R(10.0);
+    surf.cp[6] = CP_R(20.0);
+    surf.cp[7] = CP_R(0.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_DEGENERATE);
     /* CP_ERR_RADIUS: COS law with c < |b|; c == |b| (R = 0 at a point); a dip too narrow
        for any coarse sampling (k = 37: R < 0 only within ~3e-4 rad); a CUBIC dip */
     cfg = base;
-    cfg.surf.rp[0] = CP_R(5.5);
-    cfg.surf.rp[1] = CP_R(5.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RADIUS);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_RADIUS);
-    cfg.surf.rp[1] = CP_R(5.5);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RADIUS);
+    surf = surf_base;
+    surf.rp[0] = CP_R(5.5);
+    surf.rp[1] = CP_R(5.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RADIUS);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_RADIUS);
+    surf.rp[1] = CP_R(5.5);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RADIUS);
     cfg = base;
-    cfg.surf.cp[3] = CP_R(0.2);
-    cfg.surf.cp[4] = CP_R(0.3); /* 37 theta = 3 pi at theta = 0.25472: one trough inside */
-    cfg.surf.rp[0] = CP_R(5.0);
-    cfg.surf.rp[1] = CP_R(4.999);
-    cfg.surf.rp[2] = CP_R(37.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RADIUS);
-    cfg.surf.rp[1] = CP_R(5.001);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_OK);
-    shape_cfg(&shapes[SH_LINE], &cfg);
-    cfg.surf.rp[0] = CP_R(1.0);
-    cfg.surf.rp[1] = CP_R(-0.5);
-    cfg.surf.rp[2] = CP_R(-0.5);
-    cfg.surf.rp[3] = CP_R(1.0); /* min R(1/2) = -1/8 */
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RADIUS);
+    surf = surf_base;
+    surf.cp[3] = CP_R(0.2);
+    surf.cp[4] = CP_R(0.3); /* 37 theta = 3 pi at theta = 0.25472: one trough inside */
+    surf.rp[0] = CP_R(5.0);
+    surf.rp[1] = CP_R(4.999);
+    surf.rp[2] = CP_R(37.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RADIUS);
+    surf.rp[1] = CP_R(5.001);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_OK);
+    shape_cfg(&shapes[SH_LINE], &surf, &cfg);
+    surf.rp[0] = CP_R(1.0);
+    surf.rp[1] = CP_R(-0.5);
+    surf.rp[2] = CP_R(-0.5);
+    surf.rp[3] = CP_R(1.0); /* min R(1/2) = -1/8 */
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RADIUS);
     /* CP_ERR_TOO_MANY: steps, lines */
     cfg = base;
+    surf = surf_base;
     cfg.steps = (uint16_t)(CP_MAX_STEPS + 1);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_TOO_MANY);
     cfg = base;
+    surf = surf_base;
     cfg.n = (uint16_t)(CP_MAX_LINES + 1);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_TOO_MANY);
     cfg = base;
+    surf = surf_base;
     cfg.substeps = (uint16_t)(CP_MAX_SUBSTEPS + 1);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_TOO_MANY);
     /* CP_ERR_TOOL: tool radius >= min R (= 5 on the paper's example) */
     cfg = base;
-    cfg.output = TOOLPATH_OUT_CENTRE;
+    surf = surf_base;
+    cfg.output = RASTER_OUT_CENTRE;
     cfg.tool_r = CP_R(5.0);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_TOOL);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_TOOL);
     cfg.tool_r = CP_R(1.0);
-    CHECK(toolpath_init(&tp, &cfg) != CP_ERR_TOOL);
+    CHECK(canal_path_init(&tp, &surf, &cfg) != CP_ERR_TOOL);
     /* CP_ERR_TOL: 1e-5 mm chords on a 5 m circle need ~5e4 steps > CP_MAX_STEPS */
     cfg = base;
-    cfg.surf.radius = CANAL_R_CONST;
-    cfg.surf.cp[2] = CP_R(5000.0);
-    cfg.surf.rp[0] = CP_R(10.0);
+    surf = surf_base;
+    surf.radius = CANAL_R_CONST;
+    surf.cp[2] = CP_R(5000.0);
+    surf.rp[0] = CP_R(10.0);
     cfg.n = 1;
     cfg.u0 = cfg.u1 = CP_R(0.0);
     cfg.steps = 0;
     cfg.substeps = 0;
     cfg.tol = CP_R(1e-5);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_TOL);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_TOL);
     /* CP_ERR_CUSP: the paper's band stretched over u = 1.0 (lines cross the cuspidal edges),
        and one line just inside the crossing range (w = 8 < 10.454) */
     cfg = base;
+    surf = surf_base;
     cfg.u1 = CP_R(1.0);
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_CUSP);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_CUSP);
     cfg = base;
+    surf = surf_base;
     cfg.n = 1;
     cfg.u0 = cfg.u1 = (cp_real)(2.0 * atan2(1.0, 8.0));
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_ERR_CUSP);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_ERR_CUSP);
     cfg.u0 = cfg.u1 = (cp_real)(2.0 * atan2(1.0, 11.0));
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
     return 0;
 }
 
@@ -1071,17 +1112,18 @@ int test_canal_rejects(void)
  * itself is a range error, not a degenerate curve. */
 int test_canal_rejects_zero_size(void)
 {
-    struct toolpath_cfg cfg;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
     struct canal c;
-    shape_cfg(&shapes[SH_PAPER], &cfg);
-    cfg.surf.cp[2] = CP_R(0.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
-    shape_cfg(&shapes[SH_ELLIPSE], &cfg);
-    cfg.surf.cp[2] = CP_R(0.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
-    shape_cfg(&shapes[SH_ELLIPSE], &cfg);
-    cfg.surf.cp[3] = CP_R(0.0);
-    CHECK_EQ_INT(canal_init(&c, &cfg.surf), CP_ERR_RANGE);
+    shape_cfg(&shapes[SH_PAPER], &surf, &cfg);
+    surf.cp[2] = CP_R(0.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
+    shape_cfg(&shapes[SH_ELLIPSE], &surf, &cfg);
+    surf.cp[2] = CP_R(0.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
+    shape_cfg(&shapes[SH_ELLIPSE], &surf, &cfg);
+    surf.cp[3] = CP_R(0.0);
+    CHECK_EQ_INT(canal_init(&c, &surf), CP_ERR_RANGE);
     return 0;
 }
 
@@ -1089,17 +1131,18 @@ int test_canal_rejects_zero_size(void)
 
 int test_canal_count_exact(void)
 {
-    static struct toolpath tp;
-    struct toolpath_cfg cfg;
-    struct toolpath_pt pt, rec[6];
+    static struct canal_path tp;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
+    struct raster_pt pt, rec[6];
     uint32_t pos[6], n, k = 0;
     int i, r;
-    shape_cfg(&shapes[SH_BEZIER], &cfg);
+    shape_cfg(&shapes[SH_BEZIER], &surf, &cfg);
     cfg.steps = 50;
     cfg.substeps = 3;
     cfg.link = 5;
-    CHECK_EQ_INT(toolpath_init(&tp, &cfg), CP_OK);
-    n = toolpath_count(&tp);
+    CHECK_EQ_INT(canal_path_init(&tp, &surf, &cfg), CP_OK);
+    n = canal_path_count(&tp);
     CHECK_EQ_INT(n, 3u * 51u + 2u * 5u);
     /* positions: first, inside line 0, a link point, inside the backward line 1, last */
     pos[0] = 0;
@@ -1108,7 +1151,7 @@ int test_canal_count_exact(void)
     pos[3] = 51 + 5 + 30;
     pos[4] = 51 + 5 + 51 + 5;
     pos[5] = n - 1u;
-    while ((r = toolpath_next(&tp, &pt)) == CP_OK) {
+    while ((r = canal_path_next(&tp, &pt)) == CP_OK) {
         for (i = 0; i < 6; i++) {
             if (pos[i] == k) {
                 rec[i] = pt;
@@ -1119,28 +1162,28 @@ int test_canal_count_exact(void)
     }
     CHECK_EQ_INT(r, CP_ERR_DONE);
     CHECK_EQ_INT(k, n);
-    CHECK_EQ_INT(toolpath_next(&tp, &pt), CP_ERR_DONE);
+    CHECK_EQ_INT(canal_path_next(&tp, &pt), CP_ERR_DONE);
     CHECK_EQ_INT(rec[2].line, -1);
     CHECK_EQ_INT(rec[3].line, 1);
     /* seek in a scrambled order, compare bit for bit, and check that the stream goes on */
     for (i = 5; i >= 0; i--) {
         int q = (i * 4) % 6;
-        struct toolpath_pt a;
-        CHECK_EQ_INT(toolpath_seek(&tp, pos[q]), CP_OK);
-        CHECK_EQ_INT(toolpath_next(&tp, &a), CP_OK);
+        struct raster_pt a;
+        CHECK_EQ_INT(canal_path_seek(&tp, pos[q]), CP_OK);
+        CHECK_EQ_INT(canal_path_next(&tp, &a), CP_OK);
         CHECK(memcmp(&a.p, &rec[q].p, sizeof a.p) == 0);
         CHECK(memcmp(&a.n, &rec[q].n, sizeof a.n) == 0);
         CHECK(memcmp(&a.t, &rec[q].t, sizeof a.t) == 0);
         CHECK_EQ_INT(a.line, rec[q].line);
         CHECK_EQ_INT(a.index, rec[q].index);
         k = pos[q] + 1u;
-        while (toolpath_next(&tp, &a) == CP_OK) {
+        while (canal_path_next(&tp, &a) == CP_OK) {
             k++;
         }
         CHECK_EQ_INT(k, n);
     }
-    CHECK_EQ_INT(toolpath_seek(&tp, n), CP_OK);
-    CHECK_EQ_INT(toolpath_next(&tp, &pt), CP_ERR_DONE);
-    CHECK(toolpath_seek(&tp, n + 1u) != CP_OK);
+    CHECK_EQ_INT(canal_path_seek(&tp, n), CP_OK);
+    CHECK_EQ_INT(canal_path_next(&tp, &pt), CP_ERR_DONE);
+    CHECK(canal_path_seek(&tp, n + 1u) != CP_OK);
     return 0;
 }

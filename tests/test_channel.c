@@ -162,9 +162,12 @@ int test_channel_surface_ref(void)
         CHECK_NEAR(r.alpha, o.alpha, 10.0 * TOL_REL, 0);
         CHECK_NEAR(r.s, o.s, 0, TOL_REL);
         CHECK_NEAR(r.n, o.n, 0, TOL_REL);
-        for (j = 0; j < 3; j++) {
-            CHECK_NEAR(r.e1[j], o.e1[j], 10.0 * TOL_REL, 0);
-            CHECK_NEAR(r.e2[j], o.e2[j], 10.0 * TOL_REL, 0);
+        {
+            const cp_real e1[3] = {r.e1.x, r.e1.y, r.e1.z}, e2[3] = {r.e2.x, r.e2.y, r.e2.z};
+            for (j = 0; j < 3; j++) {
+                CHECK_NEAR(e1[j], o.e1[j], 10.0 * TOL_REL, 0);
+                CHECK_NEAR(e2[j], o.e2[j], 10.0 * TOL_REL, 0);
+            }
         }
         for (k = 0; k < 8; k++) { /* w = k pi/4 */
             double pr[3], nr[3], gr, e, en;
@@ -238,11 +241,11 @@ int test_channel_nodes_area(void)
         for (k = 0; k <= 4000; k++) {
             double x, y, q[3];
             channel_point(&r, (cp_real)(2.0 * PI_D * (k % 4000) / 4000.0 - PI_D), &p, &nm, &gg);
-            q[0] = (double)p.x - r.l[0];
-            q[1] = (double)p.y - r.l[1];
-            q[2] = (double)p.z - r.l[2];
-            x = q[0] * r.e1[0] + q[1] * r.e1[1] + q[2] * r.e1[2];
-            y = q[0] * r.e2[0] + q[1] * r.e2[1] + q[2] * r.e2[2];
+            q[0] = (double)p.x - r.l.x;
+            q[1] = (double)p.y - r.l.y;
+            q[2] = (double)p.z - r.l.z;
+            x = q[0] * r.e1.x + q[1] * r.e1.y + q[2] * r.e1.z;
+            y = q[0] * r.e2.x + q[1] * r.e2.y + q[2] * r.e2.z;
             if (k > 0) {
                 area += x0 * y - x * y0;
             }
@@ -277,28 +280,28 @@ static void duct(struct channel_cfg *g)
     }
 }
 
-static int path_err(const struct channel_cfg *g, const struct toolpath_cfg *rs)
+static int path_err(const struct channel_cfg *g, const struct raster_cfg *rs)
 {
     static struct channel_path cp;
     return channel_path_init(&cp, g, rs);
 }
 
-static void raster(struct toolpath_cfg *rs)
+static void raster(struct raster_cfg *rs)
 {
     memset(rs, 0, sizeof *rs);
-    rs->mode = TOOLPATH_LINES;
+    rs->mode = RASTER_LINES;
     rs->n = 3;
     rs->u0 = CP_R(-1.5);
     rs->u1 = CP_R(1.5);
     rs->tol = CP_R(0.05);
-    rs->link = TOOLPATH_LINK_AUTO;
+    rs->link = RASTER_LINK_AUTO;
 }
 
 int test_channel_rejects(void)
 {
     struct channel_cfg g;
     struct channel ch;
-    struct toolpath_cfg rs;
+    struct raster_cfg rs;
     raster(&rs);
     duct(&g);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
@@ -389,8 +392,8 @@ int test_channel_rejects(void)
     {
         static struct channel_path cp;
         volatile uint32_t twice = 2u * 65535u;
-        cp.steps = twice;
-        CHECK(cp.steps == 131070u);
+        cp.head.steps = twice;
+        CHECK(cp.head.steps == 131070u);
     }
     /* the paper's example read with the printed rotation order: the sweep folds (B5) */
     example(&g, NULL, 1);
@@ -399,14 +402,14 @@ int test_channel_rejects(void)
     example(&g, NULL, 0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
     /* tool: a ball larger than the wall's curvature radius folds the centre path */
-    rs.output = TOOLPATH_OUT_CENTRE;
+    rs.output = RASTER_OUT_CENTRE;
     rs.tool_r = CP_R(2.0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_TOOL);
     rs.tool_r = CP_R(0.25);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
     rs.tool_r = CP_R(-1.0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_TOOL);
-    rs.output = TOOLPATH_OUT_SURFACE;
+    rs.output = RASTER_OUT_SURFACE;
     rs.tool_r = CP_R(0.5);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_INVAL);
     raster(&rs);
@@ -425,7 +428,7 @@ int test_channel_rejects(void)
     return 0;
 }
 
-static int same_pt(const struct toolpath_pt *a, const struct toolpath_pt *b)
+static int same_pt(const struct raster_pt *a, const struct raster_pt *b)
 {
     return a->p.x == b->p.x && a->p.y == b->p.y && a->p.z == b->p.z && a->n.x == b->n.x &&
            a->n.y == b->n.y && a->n.z == b->n.z && a->t == b->t && a->line == b->line &&
@@ -437,8 +440,8 @@ static struct channel_path it;
 int test_channel_iter(void)
 {
     struct channel_cfg g;
-    struct toolpath_cfg rs;
-    struct toolpath_pt pt, prev, keep[4];
+    struct raster_cfg rs;
+    struct raster_pt pt, prev, keep[4];
     uint32_t k, cnt, marks[4];
     int mode;
     double smax = 0.0, emax = 0.0;
@@ -453,23 +456,23 @@ int test_channel_iter(void)
         }
         CHECK_EQ_INT(channel_path_init(&it, &g, &rs), CP_OK);
         cnt = channel_path_count(&it);
-        CHECK_EQ_INT(cnt, 3u * (it.steps + 1u) + 2u * it.link);
-        CHECK(it.steps >= 8u);
+        CHECK_EQ_INT(cnt, 3u * (it.head.steps + 1u) + 2u * it.head.link);
+        CHECK(it.head.steps >= 8u);
         marks[0] = 0u;
-        marks[1] = it.steps;
-        marks[2] = it.steps + 1u;
+        marks[1] = it.head.steps;
+        marks[2] = it.head.steps + 1u;
         marks[3] = cnt - 1u;
         memset(&prev, 0, sizeof prev);
         for (k = 0; k < cnt; k++) {
-            uint32_t block = it.steps + 1u + it.link, j = k / block, r = k % block;
+            uint32_t block = it.head.steps + 1u + it.head.link, j = k / block, r = k % block;
             int m;
             CHECK_EQ_INT(channel_path_next(&it, &pt), CP_OK);
-            if (r <= it.steps) {
+            if (r <= it.head.steps) {
                 CHECK_EQ_INT(pt.line, (int)j);
-                CHECK_EQ_INT(pt.index, (j & 1u) ? it.steps - r : r);
+                CHECK_EQ_INT(pt.index, (j & 1u) ? it.head.steps - r : r);
             } else {
                 CHECK_EQ_INT(pt.line, -1);
-                CHECK_EQ_INT(pt.index, r - it.steps);
+                CHECK_EQ_INT(pt.index, r - it.head.steps);
             }
             for (m = 0; m < 4; m++) {
                 if (marks[m] == k) {
@@ -516,7 +519,7 @@ int test_channel_iter(void)
         }
         CHECK_EQ_INT(channel_path_seek(&it, cnt + 1u), CP_ERR_RANGE);
         TEST_NOTE("channel %s: steps %u link %u count %u clamps %u\n", mode ? "CIRCLES" : "LINES",
-                  (unsigned)it.steps, (unsigned)it.link, (unsigned)cnt, (unsigned)it.ch.clamps);
+                  (unsigned)it.head.steps, (unsigned)it.head.link, (unsigned)cnt, (unsigned)it.ch.clamps);
     }
     TEST_NOTE("channel LINES: chord sagitta %.3g mm (tol 0.01), points vs reference %.3g mm\n", smax,
               emax);

@@ -184,7 +184,7 @@ int test_drc_ref_match(void)
 
 static struct drc_cfg gcfg;
 static struct drc_path it;
-static struct toolpath_pt tpt[4];
+static struct raster_pt tpt[4];
 
 static void set_geom(const double (*P)[3], int n, int K, int edge)
 {
@@ -200,16 +200,16 @@ static void set_geom(const double (*P)[3], int n, int K, int edge)
     gcfg.edge = (uint8_t)edge;
 }
 
-static void raster_defaults(struct toolpath_cfg *c)
+static void raster_defaults(struct raster_cfg *c)
 {
     memset(c, 0, sizeof *c);
-    c->mode = TOOLPATH_LINES;
+    c->mode = RASTER_LINES;
     c->n = 1;
-    c->link = TOOLPATH_LINK_AUTO;
+    c->link = RASTER_LINK_AUTO;
     c->tol = CP_R(0.001);
 }
 
-static int same_bits(const struct toolpath_pt *a, const struct toolpath_pt *b)
+static int same_bits(const struct raster_pt *a, const struct raster_pt *b)
 {
     return memcmp(&a->p, &b->p, sizeof a->p) == 0 && memcmp(&a->n, &b->n, sizeof a->n) == 0 &&
            a->line == b->line && a->index == b->index;
@@ -222,7 +222,7 @@ static int same_bits(const struct toolpath_pt *a, const struct toolpath_pt *b)
 int test_drc_stream_equals_thicken(void)
 {
     static const int sets[3] = {SET_SPIRAL_N, SET_LINE_ARC, SET_CIRCLE};
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     int s;
     unsigned seed = 6u;
     raster_defaults(&rc);
@@ -261,7 +261,7 @@ int test_drc_edge_vs_canal_ref(void)
 {
     static const double ang[7] = {0.0, 0.25, 0.45, 0.8, 1.1, 1.5, 2.0};
     static const double us[3] = {-0.5, 0.2, 0.9};
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     struct ref_canal cref;
     double cp[8] = {0}, rp[4] = {0}, P[7][3], worst = 0.0, wn = 0.0;
     uint32_t c, k, steps;
@@ -274,17 +274,17 @@ int test_drc_edge_vs_canal_ref(void)
     }
     set_geom((const double(*)[3])P, 7, DRC_HEAVY ? 4 : 3, 1);
     raster_defaults(&rc);
-    rc.surf.radius = CANAL_R_LINEAR;
-    rc.surf.rp[0] = CP_R(4.0);
-    rc.surf.rp[1] = CP_R(6.0);
+    gcfg.radius = CANAL_R_LINEAR;
+    gcfg.rp[0] = CP_R(4.0);
+    gcfg.rp[1] = CP_R(6.0);
     rc.n = 3;
     rc.u0 = (cp_real)us[0];
     rc.u1 = (cp_real)us[2];
     rc.tol = CP_R(0.002);
     CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
     c = drc_path_count(&it);
-    steps = it.steps;
-    CHECK_EQ_INT(c, 3u * (steps + 1u) + 2u * it.link);
+    steps = it.head.steps;
+    CHECK_EQ_INT(c, 3u * (steps + 1u) + 2u * it.head.link);
     cp[0] = 1.0;
     cp[1] = -2.0;
     cp[2] = 20.0;
@@ -332,13 +332,13 @@ int test_drc_edge_vs_canal_ref(void)
     CHECK(wn <= 1e-5);
     for (k = 0; k < 6u; k++) {
         uint32_t q = k == 0u ? c / 2u : test_prng(&seed) % c;
-        struct toolpath_pt a;
+        struct raster_pt a;
         CHECK_EQ_INT(drc_path_seek(&it, q), CP_OK);
         CHECK_EQ_INT(drc_path_next(&it, &a), CP_OK);
         if (q == c / 2u) {
             CHECK(same_bits(&a, &tpt[3]));
         }
-        CHECK(cp_isfinite(a.p.x));
+        CHECK(cp_finite(a.p.x));
     }
     return 0;
 }
@@ -552,7 +552,7 @@ int test_drc_helix(void)
 int test_drc_rejects(void)
 {
     static double P[5][3];
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     uint32_t need = 0;
     int i;
     for (i = 0; i < 5; i++) {
@@ -607,7 +607,7 @@ int test_drc_rejects(void)
     CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_TOO_MANY);
     CHECK_EQ_INT(drc_path_count(&it), 0);
     set_geom((const double(*)[3])P, 5, 2, 1);
-    rc.surf.rp[0] = CP_R(1.0);
+    gcfg.rp[0] = CP_R(1.0);
     CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_ERR_OFF_PLANE);
     make_set(SET_SPIRAL_U, setp);
     for (i = 0; i < 7; i++) { /* x100: 10 nm needs more than CP_MAX_PASSES passes */
@@ -763,7 +763,7 @@ int test_drc_random_planar(void)
  * exempt; now CP_ERR_CUSP. */
 int test_drc_edge_cusp_ends(void)
 {
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     struct canal_frame f;
     double P[7][3];
     cp_real q, cs, sn;
@@ -777,8 +777,8 @@ int test_drc_edge_cusp_ends(void)
     set_geom((const double(*)[3])P, 5, 2, 1);
     raster_defaults(&rc);
     rc.tol = CP_R(0.01);
-    rc.surf.radius = CANAL_R_CONST;
-    rc.surf.rp[0] = CP_R(30.0);
+    gcfg.radius = CANAL_R_CONST;
+    gcfg.rp[0] = CP_R(30.0);
     rc.u0 = CP_R(20.0) * CP_DEG2RAD;
     rc.u1 = rc.u0;
     CHECK_EQ_INT(drc_path_init(&it, &gcfg, &rc), CP_OK);
@@ -799,9 +799,9 @@ int test_drc_edge_cusp_ends(void)
     }
     set_geom((const double(*)[3])P, 3, 0, 1);
     rc.n = 1;
-    rc.surf.radius = CANAL_R_LINEAR;
-    rc.surf.rp[0] = CP_R(40.0);
-    rc.surf.rp[1] = CP_R(4.0);
+    gcfg.radius = CANAL_R_LINEAR;
+    gcfg.rp[0] = CP_R(40.0);
+    gcfg.rp[1] = CP_R(4.0);
     rc.u0 = CP_R(90.0) * CP_DEG2RAD;
     rc.u1 = rc.u0;
     /* D at the first point: R = 40, p = dR/ds = -36 / arc, kappa = 1/20, Lambda = 0,
@@ -832,7 +832,7 @@ int test_drc_sagitta_nan(void)
                                    {9000.8125, 9000.45215, 0.0},
                                    {9000.81348, 9000.4502, 0.0},
                                    {9000.81445, 9000.44824, 0.0}};
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     int err;
     set_geom(P, 4, DRC_PASSES_AUTO, 0);
     raster_defaults(&rc);

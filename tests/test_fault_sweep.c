@@ -201,9 +201,9 @@ int test_fault_sweep(void)
     int dir, kf;
     /* the reference points: the same job through the iterator */
     {
-        static struct toolpath tp;
-        struct toolpath_pt pt;
-        struct toolpath_cfg c;
+        static struct canal_path tp;
+        struct raster_pt pt;
+        struct raster_cfg c;
         struct job j;
         int i;
         job_init(&j);
@@ -211,10 +211,10 @@ int test_fault_sweep(void)
             CHECK_EQ_INT(job_command(&j, job[i], strlen(job[i])), CP_ST_OK);
         }
         c = j.cfg;
-        CHECK_EQ_INT(toolpath_init(&tp, &c), CP_OK);
-        sw.npts = toolpath_count(&tp);
+        CHECK_EQ_INT(canal_path_init(&tp, &j.canal, &c), CP_OK);
+        sw.npts = canal_path_count(&tp);
         CHECK(sw.npts <= 16u);
-        for (i = 0; toolpath_next(&tp, &pt) == CP_OK; i++) {
+        for (i = 0; canal_path_next(&tp, &pt) == CP_OK; i++) {
             sw.ref[i][0] = (int32_t)floor((double)(pt.p.x * CP_R(10000.0) + CP_R(0.5)));
             sw.ref[i][1] = (int32_t)floor((double)(pt.p.y * CP_R(10000.0) + CP_R(0.5)));
             sw.ref[i][2] = (int32_t)floor((double)(pt.p.z * CP_R(10000.0) + CP_R(0.5)));

@@ -291,7 +291,7 @@ static int rast_at(const struct rast *r, unsigned k, double *u, double *th)
     unsigned i = (j & 1u) ? r->steps - q : q, back = j & 1u;
     double dv = r->n > 1u ? (r->v1 - r->v0) / (r->n - 1u) : 0.0, sig;
 #define SIG(x) (r->form == GSR_SECTION_TRIG ? (x) : ref_gsr_psi(x))
-    if (r->mode == TOOLPATH_LINES) {
+    if (r->mode == RASTER_LINES) {
         double s0 = SIG(r->v0 + j * dv), s1 = SIG(r->v0 + (j + 1u) * dv);
         *u = q <= r->steps ? (double)i / r->steps : (back ? 0.0 : 1.0);
         sig = q <= r->steps ? s0 : s0 + (s1 - s0) * (double)(q - r->steps) / lk;
@@ -311,7 +311,7 @@ static double sig_of(const struct rast *r, double th)
     return r->form == GSR_SECTION_TRIG ? th : ref_gsr_psi(th);
 }
 
-static struct toolpath_pt pts[6000];
+static struct raster_pt pts[6000];
 static struct gsr_path gp;
 
 /* Iterator: count, zigzag, every point on the documented raster (reference), the chord
@@ -321,7 +321,7 @@ int test_gsr_iterator(void)
 {
     unsigned run;
     for (run = 0; run < 6u; run++) {
-        struct toolpath_cfg rc;
+        struct raster_cfg rc;
         struct rast r;
         double wp = 0.0, wc = 0.0, tool = run >= 4u ? 0.4 : 0.0;
         unsigned k, cnt;
@@ -333,24 +333,24 @@ int test_gsr_iterator(void)
         to_cfg(&ex_g[ei], &gc);
         gc.section = (uint8_t)(run & 1u);
         r.form = gc.section;
-        r.mode = run < 2u || run == 4u ? TOOLPATH_LINES : TOOLPATH_CIRCLES;
-        r.v0 = r.mode == TOOLPATH_LINES ? -90.0 * PI_D / 180 : -180.0 * PI_D / 180;
-        r.v1 = r.mode == TOOLPATH_LINES ? 90.0 * PI_D / 180 : 180.0 * PI_D / 180;
+        r.mode = run < 2u || run == 4u ? RASTER_LINES : RASTER_CIRCLES;
+        r.v0 = r.mode == RASTER_LINES ? -90.0 * PI_D / 180 : -180.0 * PI_D / 180;
+        r.v1 = r.mode == RASTER_LINES ? 90.0 * PI_D / 180 : 180.0 * PI_D / 180;
         rc.mode = (uint8_t)r.mode;
-        rc.n = r.mode == TOOLPATH_LINES ? 5u : 4u;
+        rc.n = r.mode == RASTER_LINES ? 5u : 4u;
         rc.u0 = (cp_real)r.v0;
         rc.u1 = (cp_real)r.v1;
         rc.tol = CP_R(0.004);
-        rc.link = TOOLPATH_LINK_AUTO;
-        rc.output = tool > 0.0 ? TOOLPATH_OUT_CENTRE : TOOLPATH_OUT_SURFACE;
+        rc.link = RASTER_LINK_AUTO;
+        rc.output = tool > 0.0 ? RASTER_OUT_CENTRE : RASTER_OUT_SURFACE;
         rc.tool_r = (cp_real)tool;
         r.v0 = (double)rc.u0;
         r.v1 = (double)rc.u1;
         CHECK_EQ_INT(gsr_path_init(&gp, &gc, &rc), CP_OK);
         to_ref(&gc, gc.frame, &rg);
-        r.n = gp.n;
-        r.steps = gp.steps;
-        r.link = gp.link;
+        r.n = gp.head.n;
+        r.steps = gp.head.steps;
+        r.link = gp.head.link;
         cnt = gsr_path_count(&gp);
         CHECK_EQ_INT(cnt, r.n * (r.steps + 1u) + (r.n - 1u) * r.link);
         CHECK(cnt <= sizeof pts / sizeof pts[0]);
@@ -409,7 +409,7 @@ int test_gsr_iterator(void)
         CHECK_EQ_INT(gsr_path_next(&gp, &pts[cnt]), CP_ERR_DONE);
         /* seek: every k reproduces the stream bit for bit */
         for (k = 0; k < cnt; k += 1u + cnt / 400u) {
-            struct toolpath_pt q;
+            struct raster_pt q;
             CHECK_EQ_INT(gsr_path_seek(&gp, k), CP_OK);
             CHECK_EQ_INT(gsr_path_next(&gp, &q), CP_OK);
             CHECK(memcmp(&q.p, &pts[k].p, sizeof q.p) == 0 && memcmp(&q.n, &pts[k].n, sizeof q.n) == 0);
@@ -418,7 +418,7 @@ int test_gsr_iterator(void)
         CHECK_EQ_INT(gsr_path_seek(&gp, cnt + 1u), CP_ERR_RANGE);
         TEST_NOTE("%s %s %s%s: n %u steps %u link %u count %u; vs reference %.3g mm, chord %.3g "
                   "mm (tol %.3g, %.0f%%)\n",
-                  ex_g[ei].name, r.mode == TOOLPATH_LINES ? "LINES" : "CIRCLES",
+                  ex_g[ei].name, r.mode == RASTER_LINES ? "LINES" : "CIRCLES",
                   r.form == GSR_SECTION_TRIG ? "TRIG" : "RATIONAL", tool > 0.0 ? " +tool" : "",
                   r.n, r.steps, r.link, cnt, wp, wc, (double)rc.tol, 100.0 * wc / (double)rc.tol);
         CHECK(wp <= (CP_REAL_DOUBLE ? 1e-9 : 1e-3));
@@ -427,7 +427,7 @@ int test_gsr_iterator(void)
     /* B3: a section that failed is not cached: a retried gsr_path_next at the same k
      * evaluates it again (the failure is forced by changing the cfg under the iterator) */
     {
-        struct toolpath_pt q0, q1;
+        struct raster_pt q0, q1;
         cp_real keep = gc.r[0][0];
         CHECK_EQ_INT(gsr_path_seek(&gp, 1u), CP_OK);
         CHECK_EQ_INT(gsr_path_next(&gp, &q0), CP_OK);
@@ -489,7 +489,7 @@ int test_gsr_rejects(void)
         {CP_ERR_RANGE, 0, 2, {{0, 1, 0, 0, 0, 0, 0}, {0}, {0}},
          {{0.1, 0, 0, 0, 0, 0, 0}, {0.1, 0, 0, 0, 0, 0, 0}, {0, 1, 0, 0, 0, 0, 0}}, {0, 0, 0}},
     };
-    struct toolpath_cfg rc;
+    struct raster_cfg rc;
     unsigned i;
     for (i = 0; i < sizeof rj / sizeof rj[0]; i++) {
         struct ex e;
@@ -521,13 +521,13 @@ int test_gsr_rejects(void)
         to_cfg(&e, &gc);
         CHECK_EQ_INT(gsr_init(&gm, &gc), CP_OK);
         memset(&rc, 0, sizeof rc);
-        rc.mode = TOOLPATH_LINES;
+        rc.mode = RASTER_LINES;
         rc.n = 8u;
         rc.u0 = -CP_PI;
         rc.u1 = CP_R(0.75) * CP_PI;
         rc.steps = 16u;
         rc.link = 2u;
-        rc.output = TOOLPATH_OUT_CENTRE;
+        rc.output = RASTER_OUT_CENTRE;
         rc.tool_r = CP_R(0.6);
         CHECK_EQ_INT(gsr_path_init(&gp, &gc, &rc), CP_ERR_FOLD);
         CHECK_EQ_INT(gsr_path_count(&gp), 0);
@@ -544,7 +544,7 @@ int test_gsr_rejects(void)
         rc.n = 2u;
         rc.steps = 0u;
         rc.tol = CP_R(1e-5);
-        rc.link = TOOLPATH_LINK_AUTO;
+        rc.link = RASTER_LINK_AUTO;
         CHECK_EQ_INT(gsr_path_init(&gp, &gc, &rc), CP_ERR_TOL);
     }
     return 0;
@@ -569,15 +569,15 @@ static int tube_run(int frame, double *ortho, double *alpha, double *nrm)
         {{0.5, 0, 0, 0, 0, 0, 0}, {0.5, 0, 0, 0, 0, 0, 0}, {0, 1, 0, 0, 0, 0, 0}},
         {0, 0, 1}};
     struct ex e = helix;
-    struct toolpath_cfg rc;
-    struct toolpath_pt pt;
+    struct raster_cfg rc;
+    struct raster_pt pt;
     double hu = 1.0 / TUBE_S, ht = 2.0 * PI_D / TUBE_L, wo = 0.0, wa = 0.0, wn = 0.0;
     unsigned k, j, i, c;
     e.frame = frame;
     to_cfg(&e, &gc);
     gc.section = GSR_SECTION_TRIG;
     memset(&rc, 0, sizeof rc);
-    rc.mode = TOOLPATH_LINES;
+    rc.mode = RASTER_LINES;
     rc.n = TUBE_L;
     rc.u0 = -CP_PI;
     rc.u1 = (cp_real)(PI_D - ht);
@@ -686,8 +686,8 @@ int test_gsr_job(void)
     };
     static struct job j;
     static struct path p;
-    struct toolpath_pt a, b;
-    struct toolpath_cfg rc;
+    struct raster_pt a, b;
+    struct raster_cfg rc;
     unsigned i;
     job_init(&j);
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
@@ -702,12 +702,12 @@ int test_gsr_job(void)
     to_cfg(&ex_g[0], &gc);
     gc.section = GSR_SECTION_TRIG;
     memset(&rc, 0, sizeof rc);
-    rc.mode = TOOLPATH_LINES;
+    rc.mode = RASTER_LINES;
     rc.n = 5u;
     rc.u0 = CP_R(-90.0) * CP_DEG2RAD;
     rc.u1 = CP_R(90.0) * CP_DEG2RAD;
     rc.tol = CP_R(0.004);
-    rc.link = TOOLPATH_LINK_AUTO;
+    rc.link = RASTER_LINK_AUTO;
     CHECK_EQ_INT(gsr_path_init(&gp, &gc, &rc), CP_OK);
     CHECK_EQ_INT(path_count(&p), gsr_path_count(&gp));
     for (i = 0; i < path_count(&p); i++) {
@@ -731,7 +731,7 @@ int test_gsr_job(void)
         for (i = 0; i < path_count(&p); i++) {
             double u, th, P[3];
             struct rast r;
-            r.mode = TOOLPATH_LINES;
+            r.mode = RASTER_LINES;
             r.form = GSR_SECTION_TRIG;
             r.n = p.info.n;
             r.steps = p.info.steps;

@@ -4,8 +4,8 @@
  * property_random_jobs: K random valid-looking jobs, written as protocol command
  *   lines (random curve kind and parameters, radius law, tool or none, LINES or
  *   CIRCLES [PATCH], n, u0..u1, STEPS or TOL) and applied with job_command, then
- *   toolpath_init. Either init rejects with a documented enum cp_err code
- *   (toolpath.h / canal.h: RANGE, RADIUS, DEGENERATE, EMPTY, TOO_MANY, TOOL, CUSP,
+ *   canal_path_init. Either init rejects with a documented enum cp_err code
+ *   (canal_path.h / canal.h: RANGE, RADIUS, DEGENERATE, EMPTY, TOO_MANY, TOOL, CUSP,
  *   TOL, NUMERIC, NONFINITE, INVAL), or every point is finite with a unit normal and
  *   every family-2 point is within 1 um of the independent reference (ref_canal.c:
  *   the orthogonal-trajectory ODE integrated adaptively, each line once,
@@ -31,7 +31,7 @@
 #include "proto.h"
 #include "ref_canal.h"
 #include "test.h"
-#include "toolpath.h"
+#include "canal_path.h"
 
 #ifdef __arm__
 #define PROP_JOBS 16      /* QEMU: soft double reference, keep it short */
@@ -86,7 +86,7 @@ static void put_num(char *buf, size_t cap, unsigned *s, double v)
 
 /* ------------------------------------------------------------ statistics */
 
-static unsigned st_err[20];     /* toolpath_init rejections by -enum cp_err */
+static unsigned st_err[20];     /* canal_path_init rejections by -enum cp_err */
 static unsigned st_cmd[24];     /* job command rejections by wire code */
 static unsigned st_ok, st_points, st_fam2, st_trunc;
 static double st_max2, st_max1, st_maxn;
@@ -220,17 +220,17 @@ static int make_job(unsigned *s, char lines[8][160])
 }
 
 /* Reference position of the emitted point at (t, u): surface, tool centre or tip. */
-static double ref_dist(const struct ref_canal *rc, const struct toolpath *tp, double t, double u,
-                       const struct toolpath_pt *pt)
+static double ref_dist(const struct ref_canal *rc, const struct canal_path *tp, double t, double u,
+                       const struct raster_pt *pt)
 {
     double m[3], nn[3], r = (double)tp->tool_r, d[3];
     ref_point(rc, t, u, m, nn);
-    if (tp->output != TOOLPATH_OUT_SURFACE) {
+    if (tp->output != RASTER_OUT_SURFACE) {
         int i;
         for (i = 0; i < 3; i++) {
             m[i] -= r * nn[i];
         }
-        if (tp->output == TOOLPATH_OUT_TIP) {
+        if (tp->output == RASTER_OUT_TIP) {
             m[2] -= r;
         }
     }
@@ -240,25 +240,25 @@ static double ref_dist(const struct ref_canal *rc, const struct toolpath *tp, do
     return sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-static double start_u(const struct toolpath *tp, unsigned j)
+static double start_u(const struct canal_path *tp, unsigned j)
 {
-    if (tp->n < 2u) {
+    if (tp->head.n < 2u) {
         return (double)tp->u0;
     }
-    return (double)tp->u0 + (double)j * ((double)tp->u1 - (double)tp->u0) / (double)(tp->n - 1u);
+    return (double)tp->u0 + (double)j * ((double)tp->u1 - (double)tp->u0) / (double)(tp->head.n - 1u);
 }
 
 #define MAXL (PROP_MAXN > 2u ? PROP_MAXN : 2u)
 
 /* Walk every point of an accepted job; returns 0 or the failing line. */
-static int check_job(struct toolpath *tp, const char lines[8][160])
+static int check_job(struct canal_path *tp, const char lines[8][160])
 {
     struct ref_canal rc;
     static struct ref_line rl[MAXL];
-    struct toolpath_pt pt;
+    struct raster_pt pt;
     double cp[8], rp[4], worst = 0.0;
-    uint32_t k, limit = toolpath_count(tp);
-    int i, circ = tp->mode == TOOLPATH_CIRCLES, patch = tp->span == TOOLPATH_SPAN_LINES;
+    uint32_t k, limit = canal_path_count(tp);
+    int i, circ = tp->head.mode == RASTER_CIRCLES, patch = tp->span == RASTER_SPAN_LINES;
     int cur_circle = -1;
     for (i = 0; i < 8; i++) {
         cp[i] = (double)tp->surf.cp[i];
@@ -272,8 +272,8 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
         ref_line_start(&rl[0], &rc, rc.t0, (double)tp->u0);
         ref_line_start(&rl[1], &rc, rc.t0, (double)tp->u1);
     } else {
-        CHECK(tp->n <= MAXL);
-        for (i = 0; i < (int)tp->n; i++) {
+        CHECK(tp->head.n <= MAXL);
+        for (i = 0; i < (int)tp->head.n; i++) {
             ref_line_start(&rl[i], &rc, rc.t0, start_u(tp, (unsigned)i));
         }
     }
@@ -283,9 +283,9 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
     }
     for (k = 0; k < limit; k++) {
         double e = -1.0, t, nl;
-        CHECK_EQ_INT(toolpath_next(tp, &pt), CP_OK);
-        CHECK(cp_isfinite(pt.p.x) && cp_isfinite(pt.p.y) && cp_isfinite(pt.p.z));
-        CHECK(cp_isfinite(pt.n.x) && cp_isfinite(pt.n.y) && cp_isfinite(pt.n.z));
+        CHECK_EQ_INT(canal_path_next(tp, &pt), CP_OK);
+        CHECK(cp_finite(pt.p.x) && cp_finite(pt.p.y) && cp_finite(pt.p.z));
+        CHECK(cp_finite(pt.n.x) && cp_finite(pt.n.y) && cp_finite(pt.n.z));
         nl = sqrt((double)pt.n.x * pt.n.x + (double)pt.n.y * pt.n.y + (double)pt.n.z * pt.n.z);
         if (fabs(nl - 1.0) > st_maxn) {
             st_maxn = fabs(nl - 1.0);
@@ -295,7 +295,7 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
         st_points++;
         if (!circ) {
             if (pt.line >= 0) {
-                CHECK(pt.line < (int)tp->n);
+                CHECK(pt.line < (int)tp->head.n);
                 CHECK_EQ_INT(ref_line_advance(&rl[pt.line], t), 0);
                 e = ref_dist(&rc, tp, t, rl[pt.line].u, &pt);
             }
@@ -305,7 +305,7 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
                 cur_circle = pt.line;
                 if (pt.index == 0u) {
                     side = 0;
-                } else if (pt.index == tp->steps) {
+                } else if (pt.index == tp->head.steps) {
                     side = 1;
                 }
             } else {
@@ -321,7 +321,7 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
             } else {
                 /* interior circle point: evenly spaced contact angle (measured only) */
                 double ua = patch ? rl[0].u : (double)tp->u0, ub = patch ? rl[1].u : (double)tp->u1;
-                double e1 = ref_dist(&rc, tp, t, ua + (ub - ua) * pt.index / tp->steps, &pt);
+                double e1 = ref_dist(&rc, tp, t, ua + (ub - ua) * pt.index / tp->head.steps, &pt);
                 if (e1 > st_max1) {
                     st_max1 = e1;
                 }
@@ -352,7 +352,7 @@ static int check_job(struct toolpath *tp, const char lines[8][160])
 int test_property_random_jobs(void)
 {
     static struct job jb;
-    static struct toolpath tp;
+    static struct canal_path tp;
     static char lines[8][160];
     unsigned seed = 0x5eed2024u, i;
     int c;
@@ -378,7 +378,7 @@ int test_property_random_jobs(void)
             continue;
         }
         CHECK((jb.have & JOB_HAVE_ALL) == JOB_HAVE_ALL);
-        err = toolpath_init(&tp, &jb.cfg);
+        err = canal_path_init(&tp, &jb.canal, &jb.cfg);
         if (err != CP_OK) {
             CHECK(err == CP_ERR_RANGE || err == CP_ERR_RADIUS || err == CP_ERR_DEGENERATE ||
                   err == CP_ERR_EMPTY || err == CP_ERR_TOO_MANY || err == CP_ERR_TOOL ||
@@ -398,7 +398,7 @@ int test_property_random_jobs(void)
               "max |n|-1 %.2g; %u truncated to %u points\n",
               CP_REAL_NAME, (unsigned)PROP_JOBS, st_ok, st_points, st_fam2, st_max2 * 1e3,
               st_max1 * 1e3, st_maxn, st_trunc, (unsigned)PROP_MAX_POINTS);
-    TEST_NOTE("rejected by toolpath_init: RANGE %u RADIUS %u DEGENERATE %u EMPTY %u TOO_MANY %u "
+    TEST_NOTE("rejected by canal_path_init: RANGE %u RADIUS %u DEGENERATE %u EMPTY %u TOO_MANY %u "
               "TOOL %u CUSP %u NUMERIC %u TOL %u NONFINITE %u INVAL %u\n",
               st_err[3], st_err[4], st_err[5], st_err[6], st_err[7], st_err[8], st_err[9],
               st_err[10], st_err[11], st_err[2], st_err[1]);

@@ -8,32 +8,32 @@
 #include "raster.h"
 #include "test.h"
 
-static void base(struct toolpath_cfg *c)
+static void base(struct raster_cfg *c)
 {
     memset(c, 0, sizeof *c);
-    c->mode = TOOLPATH_LINES;
+    c->mode = RASTER_LINES;
     c->n = 3;
     c->u0 = CP_R(-1.0);
     c->u1 = CP_R(1.0);
-    c->link = TOOLPATH_LINK_AUTO;
+    c->link = RASTER_LINK_AUTO;
     c->tol = CP_R(0.001);
 }
 
 int test_raster_check(void)
 {
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     base(&c);
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_OK);
     CHECK_EQ_INT(raster_check(NULL, CP_PI), CP_ERR_INVAL);
     c.mode = 2;
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_INVAL);
     base(&c);
-    c.output = TOOLPATH_OUT_TIP + 1u;
+    c.output = RASTER_OUT_TIP + 1u;
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_INVAL);
     base(&c);
     c.tool_r = CP_R(1.0); /* a tool with OUT_SURFACE */
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_INVAL);
-    c.output = TOOLPATH_OUT_CENTRE;
+    c.output = RASTER_OUT_CENTRE;
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_OK);
     c.tool_r = CP_R(-1.0);
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_TOOL);
@@ -79,16 +79,16 @@ int test_raster_check(void)
     /* precedence: INVAL, NONFINITE, RANGE, TOO_MANY, TOOL */
     c.link = CP_MAX_LINK + 1u; /* RANGE and TOO_MANY */
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_RANGE);
-    c.output = TOOLPATH_OUT_CENTRE;
+    c.output = RASTER_OUT_CENTRE;
     c.tool_r = CP_R(-1.0); /* + TOOL */
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_RANGE);
     c.u0 = (cp_real)NAN; /* + NONFINITE */
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_NONFINITE);
-    c.output = TOOLPATH_OUT_SURFACE; /* + INVAL (a tool with OUT_SURFACE) */
+    c.output = RASTER_OUT_SURFACE; /* + INVAL (a tool with OUT_SURFACE) */
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_INVAL);
     base(&c);
     c.steps = CP_MAX_STEPS + 1u;
-    c.output = TOOLPATH_OUT_TIP;
+    c.output = RASTER_OUT_TIP;
     c.tool_r = CP_R(-2.0);
     CHECK_EQ_INT(raster_check(&c, CP_PI), CP_ERR_TOO_MANY);
     return 0;
@@ -102,7 +102,8 @@ int test_raster_layout(void)
     for (n = 1; n <= 4u; n++) {
         for (st = 1; st <= 5u; st++) {
             for (lk = 0; lk <= 3u; lk++) {
-                uint32_t k = 0, j, r, cnt = raster_count(n, st, lk), pos = 7u;
+                uint32_t k = 0, j, r, cnt = raster_count(n, st, lk);
+                struct raster_head h = {0};
                 struct raster_at at;
                 for (j = 0; j < n; j++) {
                     for (r = 0; r <= st; r++, k++) {
@@ -123,10 +124,12 @@ int test_raster_layout(void)
                     }
                 }
                 CHECK_EQ_INT(cnt, k);
-                CHECK_EQ_INT(raster_seek(&pos, cnt, cnt), CP_OK);
-                CHECK_EQ_INT(pos, cnt);
-                CHECK_EQ_INT(raster_seek(&pos, cnt, cnt + 1u), CP_ERR_RANGE);
-                CHECK_EQ_INT(pos, cnt);
+                h.count = cnt;
+                h.k = 7u;
+                CHECK_EQ_INT(raster_seek(&h, cnt), CP_OK);
+                CHECK_EQ_INT(h.k, cnt);
+                CHECK_EQ_INT(raster_seek(&h, cnt + 1u), CP_ERR_RANGE);
+                CHECK_EQ_INT(h.k, cnt);
             }
         }
     }
@@ -155,7 +158,7 @@ int test_raster_fit(void)
 {
     static const struct raster_rule grow = {CP_R(0.9), CP_R(0.9), 8u, 0u, 31u, 1u};
     static const struct raster_rule pilot = {CP_R(0.8), CP_R(1.0), 32u, 1u, 3u, 0u};
-    struct toolpath_cfg c;
+    struct raster_cfg c;
     struct raster_fit f;
     double cq[2];
     int rounds;
@@ -198,7 +201,7 @@ int test_raster_fit(void)
     CHECK_EQ_INT(f.m[0], 12);
     CHECK_EQ_INT(f.m[1], 3);
     c.n = 1;
-    c.link = TOOLPATH_LINK_AUTO;
+    c.link = RASTER_LINK_AUTO;
     raster_fit_begin(&f, &c, &grow);
     CHECK_EQ_INT(f.derive, 0);
     CHECK_EQ_INT(f.m[1], 1);

@@ -8,12 +8,13 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "toolpath.h"
+#include "canal_path.h"
 
 struct job {
     const char *name;
     const char *title;
-    struct toolpath_cfg cfg;
+    struct raster_cfg cfg;
+    struct canal_cfg surf;
 };
 
 struct view {
@@ -35,8 +36,8 @@ static void project(int iso, double x, double y, double z, double *px, double *p
 
 static int run(const struct job *jb, const char *dir)
 {
-    static struct toolpath tp;
-    struct toolpath_pt pt;
+    static struct canal_path tp;
+    struct raster_pt pt;
     char path[512];
     FILE *csv, *svg;
     double minx[2] = {1e30, 1e30}, maxx[2] = {-1e30, -1e30}, miny[2] = {1e30, 1e30},
@@ -44,9 +45,9 @@ static int run(const struct job *jb, const char *dir)
     double worst_r = 0.0;
     int err, iso, last_line = -2;
     uint32_t k;
-    err = toolpath_init(&tp, &jb->cfg);
+    err = canal_path_init(&tp, &jb->surf, &jb->cfg);
     if (err != CP_OK) {
-        fprintf(stderr, "%s: toolpath_init failed: %d\n", jb->name, err);
+        fprintf(stderr, "%s: canal_path_init failed: %d\n", jb->name, err);
         return 1;
     }
     snprintf(path, sizeof path, "%s/%s.csv", dir, jb->name);
@@ -56,7 +57,7 @@ static int run(const struct job *jb, const char *dir)
         return 1;
     }
     fprintf(csv, "line,index,x,y,z,nx,ny,nz\n");
-    for (k = 0; toolpath_next(&tp, &pt) == CP_OK; k++) {
+    for (k = 0; canal_path_next(&tp, &pt) == CP_OK; k++) {
         struct canal_jet j;
         double ex, ey, ez, r;
         fprintf(csv, "%d,%u,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", pt.line, pt.index, (double)pt.p.x,
@@ -74,7 +75,7 @@ static int run(const struct job *jb, const char *dir)
         ey = (double)pt.p.y - (double)j.y;
         /* tool centre (tip + r z) lies on the sphere of radius R - r_tool */
         ez = (double)pt.p.z - (double)j.r +
-             (jb->cfg.output == TOOLPATH_OUT_TIP ? (double)jb->cfg.tool_r : 0.0);
+             (jb->cfg.output == RASTER_OUT_TIP ? (double)jb->cfg.tool_r : 0.0);
         r = sqrt(ex * ex + ey * ey + ez * ez) - ((double)j.r - (double)jb->cfg.tool_r);
         worst_r = fabs(r) > worst_r ? fabs(r) : worst_r;
     }
@@ -90,18 +91,18 @@ static int run(const struct job *jb, const char *dir)
                  "font-family='sans-serif' font-size='13'>\n<rect width='980' height='540' "
                  "fill='white'/>\n<text x='10' y='20'>%s: %u points (top view | isometric view)"
                  "</text>\n",
-            jb->title, (unsigned)toolpath_count(&tp));
+            jb->title, (unsigned)canal_path_count(&tp));
     for (iso = 0; iso < 2; iso++) {
         double w = maxx[iso] - minx[iso], h = maxy[iso] - miny[iso];
         double sc = 460.0 / (w > h ? w : h);
         double ox = 10.0 + iso * 490.0, oy = 40.0;
         int open = 0;
-        if (toolpath_seek(&tp, 0) != CP_OK) {
+        if (canal_path_seek(&tp, 0) != CP_OK) {
             fclose(svg);
             return 1;
         }
         last_line = -2;
-        while (toolpath_next(&tp, &pt) == CP_OK) {
+        while (canal_path_next(&tp, &pt) == CP_OK) {
             double px, py;
             project(iso, pt.p.x, pt.p.y, pt.p.z, &px, &py);
             px = ox + (px - minx[iso]) * sc;
@@ -125,7 +126,7 @@ static int run(const struct job *jb, const char *dir)
     fprintf(svg, "</svg>\n");
     fclose(svg);
     printf("%-8s %-52s points %6u  steps %4u  substeps %2u  link %2u  sphere residual %.2g mm\n",
-           jb->name, jb->title, (unsigned)k, tp.steps, tp.substeps, tp.link, worst_r);
+           jb->name, jb->title, (unsigned)k, tp.head.steps, tp.substeps, tp.head.link, worst_r);
     return 0;
 }
 
@@ -138,32 +139,32 @@ int main(int argc, char **argv)
     /* the paper's example: circle r = 3, R = 5.5 cos 2t + 10.5, regular band */
     jobs[0].name = "paper";
     jobs[0].title = "Frolov 2022 example, R = 5.5 cos 2t + 10.5, tol 2 um";
-    jobs[0].cfg.surf.curve = CANAL_ARC;
-    jobs[0].cfg.surf.radius = CANAL_R_COS;
-    jobs[0].cfg.surf.cp[2] = CP_R(3.0);
-    jobs[0].cfg.surf.cp[4] = CP_TWO_PI;
-    jobs[0].cfg.surf.rp[0] = CP_R(5.5);
-    jobs[0].cfg.surf.rp[1] = CP_R(10.5);
-    jobs[0].cfg.surf.rp[2] = CP_R(2.0);
-    jobs[0].cfg.mode = TOOLPATH_LINES;
+    jobs[0].surf.curve = CANAL_ARC;
+    jobs[0].surf.radius = CANAL_R_COS;
+    jobs[0].surf.cp[2] = CP_R(3.0);
+    jobs[0].surf.cp[4] = CP_TWO_PI;
+    jobs[0].surf.rp[0] = CP_R(5.5);
+    jobs[0].surf.rp[1] = CP_R(10.5);
+    jobs[0].surf.rp[2] = CP_R(2.0);
+    jobs[0].cfg.mode = RASTER_LINES;
     jobs[0].cfg.n = 12;
     jobs[0].cfg.u0 = CP_R(-0.5);
     jobs[0].cfg.u1 = CP_R(0.18);
     jobs[0].cfg.tol = CP_R(0.002);
-    jobs[0].cfg.link = TOOLPATH_LINK_AUTO;
+    jobs[0].cfg.link = RASTER_LINK_AUTO;
     /* a realistic fillet: variable radius 3..5 mm around a 50 mm boss, ball tool 2 mm */
     jobs[1] = jobs[0];
     jobs[1].name = "boss";
     jobs[1].title = "fillet around a boss, R = 4 + cos 3t mm, ball 2 mm tip";
-    jobs[1].cfg.surf.cp[2] = CP_R(25.0);
-    jobs[1].cfg.surf.rp[0] = CP_R(1.0);
-    jobs[1].cfg.surf.rp[1] = CP_R(4.0);
-    jobs[1].cfg.surf.rp[2] = CP_R(3.0);
+    jobs[1].surf.cp[2] = CP_R(25.0);
+    jobs[1].surf.rp[0] = CP_R(1.0);
+    jobs[1].surf.rp[1] = CP_R(4.0);
+    jobs[1].surf.rp[2] = CP_R(3.0);
     jobs[1].cfg.n = 10;
     jobs[1].cfg.u0 = CP_R(0.0);
     jobs[1].cfg.u1 = CP_R(1.5);
     jobs[1].cfg.tol = CP_R(0.005);
-    jobs[1].cfg.output = TOOLPATH_OUT_TIP;
+    jobs[1].cfg.output = RASTER_OUT_TIP;
     jobs[1].cfg.tool_r = CP_R(2.0);
     for (i = 0; i < 2; i++) {
         fails += run(&jobs[i], dir);

@@ -59,7 +59,7 @@ r, end = b"", time.time() + 10
 while time.time() < end and r.count(b"ok\n") < n:
     r += read_until(b"ok\n", 0.2)
 check(r.count(b"ok\n") == n and r.count(b"[VER:") == n, "%d pipelined $I -> %d ok" % (n, r.count(b"ok\n")))
-# 4. a real job: the deepest firmware paths (toolpath_init's walk, streaming) run
+# 4. a real job: the deepest firmware paths (canal_path_init's walk, streaming) run
 #    before the stack is read; act as a machine that answers ok per G-code line
 job = [b"CURVE ARC 0 0 3 0 360", b"RADIUS COS 5.5 10.5 2", b"LINES 3 -25 10", b"TOL 20",
        b"TOOL BALL 1", b"CIRCLES 24 -20 10", b"CHECKSUM ON"]

@@ -6,16 +6,16 @@ BUILD=${BUILD:-build}
 d=$BUILD/readme; mkdir -p "$d"
 {
     echo '#include <stdio.h>'
-    echo '#include "toolpath.h"'
+    echo '#include "canal_path.h"'
     echo 'static unsigned long n_sent;'
     echo 'static void send(cp_real x, cp_real y, cp_real z) { (void)x; (void)y; (void)z; n_sent++; }'
     echo 'int main(void) {'
     sed -n '/^```c$/,/^```$/p' README.md | sed '1d;$d'
-    printf '%s\n' 'printf("readme example: %lu points of %lu\n", n_sent, (unsigned long)toolpath_count(&tp));'
-    echo 'return n_sent == 0 || n_sent != toolpath_count(&tp); }'
+    printf '%s\n' 'printf("readme example: %lu points of %lu\n", n_sent, (unsigned long)canal_path_count(&tp));'
+    echo 'return n_sent == 0 || n_sent != canal_path_count(&tp); }'
 } > "$d/example.c"
 if ${CC:-cc} -std=c99 -Wall -Wextra -Werror -Wno-unused-result -Ifirmware -Ihal -o "$d/example" "$d/example.c" \
-        firmware/canal.c firmware/toolpath.c firmware/raster.c firmware/cp_math.c -lm && "$d/example"; then
+        firmware/canal.c firmware/canal_path.c firmware/raster.c firmware/cp_math.c -lm && "$d/example"; then
     echo "readme: 1 passed, 0 failed"
 else
     echo "readme: 0 passed, 1 failed"; exit 1

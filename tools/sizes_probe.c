@@ -5,7 +5,7 @@
  */
 #include "proto.h"
 
-const struct toolpath sizeof_toolpath;
+const struct canal_path sizeof_canal_path;
 const struct canal sizeof_canal;
 const struct job sizeof_job;
 const struct frame_rx sizeof_frame_rx;

@@ -1,4 +1,5 @@
-/* toolpath.c - pull iterator over a canal-surface patch (both curvature-line families).
+/* canal_path.c - the canal model's iterator over a canal-surface patch (both
+ * curvature-line families; canal_path.h).
  * SPDX-License-Identifier: MIT
  *
  * Parameter grid. With N output steps and M Simpson panels per step, the
@@ -12,15 +13,14 @@
  * by at most 2 R_max |dLambda| (the stereographic map has Lipschitz constant <= 2R
  * in lambda). The panel count is fixed before streaming from a Richardson estimate
  * (64 vs 128 panels compared at every common node, error ratio 16 per halving), so
- * that 2 R_max |dLambda| <= TOOLPATH_LAMBDA_TOL. Summation uses Kahan compensation:
+ * that 2 R_max |dLambda| <= CANAL_PATH_LAMBDA_TOL. Summation uses Kahan compensation:
  * without it float32 drift reaches ~3e-5 mm after 4096 steps; with it the sum is
  * within 1-2 ulp of the exact sum of the panel terms. Backward lines re-use the
  * identical panel terms in reverse order, and Lambda is snapped to its exact value 0
  * at t0, so every line starts from the same state on every run (resume is exact).
  */
-#include "toolpath.h"
+#include "canal_path.h"
 #include "cp_math.h"
-#include "raster.h"
 
 #define RICH_COARSE 64u      /* Richardson estimate: coarse panel count over [t0, t1] */
 #define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
@@ -31,7 +31,7 @@ struct quad {
     cp_real lam, comp, g; /* Lambda, Kahan compensation, integrand at the current half-node */
 };
 
-static cp_real t_at(const struct toolpath *tp, uint32_t a, cp_real hp)
+static cp_real t_at(const struct canal_path *tp, uint32_t a, cp_real hp)
 {
     return tp->surf.t0 + (cp_real)a * hp;
 }
@@ -53,18 +53,24 @@ static void quad_reset(const struct canal *c, struct quad *q, struct canal_jet *
     q->g = canal_g(j);
 }
 
+/* The half-node d half-nodes from a in the direction of a march (backward: d <= a, a
+ * march never passes half-node 0). */
+static uint32_t half_node(uint32_t a, uint32_t d, int fwd)
+{
+    return fwd ? a + d : a - d;
+}
+
 /* March npan Simpson panels from half-node a: forward (a -> a + 2 npan) or backward
- * (a -> a - 2 npan). Leaves the jet of the final half-node in *j. */
-static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, uint32_t npan,
+ * (a -> a - 2 npan, 2 npan <= a). Leaves the jet of the final half-node in *j. */
+static void quad_march(const struct canal_path *tp, struct quad *q, uint32_t a, uint32_t npan,
                        int fwd, cp_real hp, struct canal_jet *j)
 {
     const cp_real w = hp / CP_R(3.0);
-    const uint32_t s = fwd ? 1u : 0xFFFFFFFFu; /* half-node step: +1 or -1 (mod 2^32) */
     uint32_t m;
     if (tp->surf.kappa_const) {
         /* C has constant curvature (ARC, LINE): Lambda = int R' kappa dt = kappa (R(t) - R(t0))
          * exactly; no quadrature, one jet at the end node (MATH-canal §6). */
-        canal_jet(&tp->surf, t_at(tp, a + 2u * npan * s, hp), j);
+        canal_jet(&tp->surf, t_at(tp, half_node(a, 2u * npan, fwd), hp), j);
         q->lam = tp->surf.kappa_c * (j->r - tp->r0);
         q->comp = CP_R(0.0);
         q->g = CP_R(0.0);
@@ -72,9 +78,9 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
     }
     for (m = 0; m < npan; m++) {
         cp_real gm, ge, d;
-        canal_jet(&tp->surf, t_at(tp, a + s, hp), j);
+        canal_jet(&tp->surf, t_at(tp, half_node(a, 1u, fwd), hp), j);
         gm = canal_g(j);
-        a += 2u * s;
+        a = half_node(a, 2u, fwd);
         canal_jet(&tp->surf, t_at(tp, a, hp), j);
         ge = canal_g(j);
         /* the same three samples in the same order in both directions: t-ascending */
@@ -85,12 +91,12 @@ static void quad_march(const struct toolpath *tp, struct quad *q, uint32_t a, ui
 }
 
 /* Position emitted for a surface label at frame f (surface, tool centre or tip). */
-static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct canal_frame *f,
+static CP_ALWAYS_INLINE void emit_inline(const struct canal_path *tp, const struct canal_frame *f,
                                          cp_real h, cp_real b, struct canal_point *out)
 {
-    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    cp_real off = tp->output == RASTER_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
     canal_point_inline(f, h, b, off, out);
-    if (tp->output == TOOLPATH_OUT_TIP) {
+    if (tp->output == RASTER_OUT_TIP) {
         out->m.z -= tp->tool_r;
     }
 }
@@ -100,7 +106,7 @@ static CP_ALWAYS_INLINE void emit_inline(const struct toolpath *tp, const struct
  * points is not (a non-finite coordinate makes its difference non-finite; finite points
  * are bounded, |m| <= ~1e4 mm as in finish, so the squares cannot overflow). (One emit
  * in a loop: the init walks' only copy of the point body.) */
-static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, const cp_real *h,
+static cp_real sag3(const struct canal_path *tp, const struct canal_frame *f, const cp_real *h,
                     const cp_real *b)
 {
     struct canal_point p[3];
@@ -116,7 +122,7 @@ static cp_real sag3(const struct toolpath *tp, const struct canal_frame *f, cons
 }
 
 /* Is label (h, b) regular on the surface and (with a tool) on the tool-centre surface? */
-static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_real h, cp_real b)
+static int regular(const struct canal_path *tp, const struct canal_frame *f, cp_real h, cp_real b)
 {
     cp_real den = f->q2 * b * b + h * h;
     if (!(canal_regularity(f, h, b, CP_R(0.0)) > CUSP_EPS * den)) {
@@ -131,39 +137,39 @@ static int regular(const struct toolpath *tp, const struct canal_frame *f, cp_re
 /* Homogeneous label of the line starting at angle u on the FIRST circle:
  * (q0 cos(u/2), sin(u/2)) - MATH-canal §5.2. With span ANGLE (CIRCLES) the
  * frame-independent part (cos(u/2), sin(u/2)) of the fixed angle u instead (label_h). */
-static void first_label(const struct toolpath *tp, cp_real u, cp_real *alpha, cp_real *b)
+static void first_label(const struct canal_path *tp, cp_real u, cp_real *alpha, cp_real *b)
 {
     cp_real sn, cs;
-    if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
+    if (tp->labels == RASTER_LABEL_LAMBDA) {
         *alpha = u; /* w = lambda(t0): the label (w, 1) */
         *b = CP_R(1.0);
         return;
     }
     cp_sincos(CP_R(0.5) * u, &sn, &cs);
-    *alpha = (tp->span == TOOLPATH_SPAN_ANGLE ? CP_R(1.0) : tp->q0) * cs;
+    *alpha = (tp->span == RASTER_SPAN_ANGLE ? CP_R(1.0) : tp->q0) * cs;
     *b = sn;
 }
 
 /* h of the label at frame f (Lambda = lam) of the line whose first_label (or line_label)
  * is (alpha, b): alpha + lam b; span ANGLE, the fixed angle: q alpha. Its b is b. */
-static cp_real label_h(const struct toolpath *tp, const struct canal_frame *f, cp_real lam,
+static cp_real label_h(const struct canal_path *tp, const struct canal_frame *f, cp_real lam,
                        cp_real alpha, cp_real b)
 {
-    return tp->span == TOOLPATH_SPAN_ANGLE ? cp_sqrt(f->q2) * alpha : alpha + lam * b;
+    return tp->span == RASTER_SPAN_ANGLE ? cp_sqrt(f->q2) * alpha : alpha + lam * b;
 }
 
 /* Start angle of family-2 line j. */
-static cp_real line_u0(const struct toolpath *tp, uint32_t j)
+static cp_real line_u0(const struct canal_path *tp, uint32_t j)
 {
-    if (tp->n <= 1u) {
+    if (tp->head.n <= 1u) {
         return tp->u0;
     }
-    return tp->u0 + (tp->u1 - tp->u0) * ((cp_real)j / (cp_real)(tp->n - 1u));
+    return tp->u0 + (tp->u1 - tp->u0) * ((cp_real)j / (cp_real)(tp->head.n - 1u));
 }
 
 /* Half start angle x_j = u0 / 2 + j d of family-2 line j (ANGLE labels), d = lab_d.
  * The one formula every caller uses, so a label is the same bits whenever it is made. */
-static cp_real line_half_angle(const struct toolpath *tp, uint32_t j)
+static cp_real line_half_angle(const struct canal_path *tp, uint32_t j)
 {
     return CP_R(0.5) * tp->u0 + (cp_real)j * tp->lab_d;
 }
@@ -173,10 +179,10 @@ static cp_real line_half_angle(const struct toolpath *tp, uint32_t j)
  * <= 2 roundings (~2.4e-7 rad relative to |x| <= pi/2) and cp_sincos <= 1.2e-7, so
  * the half-angle direction is off by <= ~4e-7 rad: <= 8 nm on a 10 mm radius - within
  * the float floor and measured by the reference tests. */
-static void line_label(const struct toolpath *tp, uint32_t j, cp_real *alpha, cp_real *b)
+static void line_label(const struct canal_path *tp, uint32_t j, cp_real *alpha, cp_real *b)
 {
     cp_real sn, cs;
-    if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
+    if (tp->labels == RASTER_LABEL_LAMBDA) {
         first_label(tp, line_u0(tp, j), alpha, b);
         return;
     }
@@ -187,7 +193,7 @@ static void line_label(const struct toolpath *tp, uint32_t j, cp_real *alpha, cp
 
 /* Label (h, b) at frame f (Lambda = lam) of the CIRCLES-mode boundary u: the family-2
  * line that starts at u (span LINES) or the fixed contact-frame angle u (span ANGLE). */
-static void bound_label(const struct toolpath *tp, cp_real u, const struct canal_frame *f,
+static void bound_label(const struct canal_path *tp, cp_real u, const struct canal_frame *f,
                         cp_real lam, cp_real *h, cp_real *b)
 {
     first_label(tp, u, h, b);
@@ -261,8 +267,8 @@ static uint32_t arc_segments(cp_real rad, cp_real gap, cp_real tol)
 }
 
 /* Richardson estimate of the Simpson panel count over [t0, t1] for
- * 2 R_max |dLambda| <= TOOLPATH_LAMBDA_TOL. Returns the panel count (>= 1). */
-static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
+ * 2 R_max |dLambda| <= CANAL_PATH_LAMBDA_TOL. Returns the panel count (>= 1). */
+static CP_NOINLINE uint32_t lambda_panels(const struct canal_path *tp)
 {
     struct quad qc, qf;
     struct canal_jet j;
@@ -281,7 +287,7 @@ static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
     }
     /* fine error ~ |fine - coarse| / 15; panels scale as err^(1/4) */
     err = err / CP_R(15.0) * CP_R(2.0) * tp->surf.rmax;
-    ratio = err / TOOLPATH_LAMBDA_TOL;
+    ratio = err / CANAL_PATH_LAMBDA_TOL;
     p = CP_R(2.0) * (cp_real)RICH_COARSE * cp_sqrt(cp_sqrt(ratio)) * CP_R(1.25);
     /* err 0 (p 0), or NaN (p NaN), or p in (0, 1] (ceil 1): one panel */
     if (!(p > CP_R(1.0))) {
@@ -300,15 +306,15 @@ static CP_NOINLINE uint32_t lambda_panels(const struct toolpath *tp)
  * segment midpoint of it must be regular and finite), CIRCLES the two bounding lines
  * its link moves follow. Work: 2 gsteps + 1 frames and, per step, 3 points on each of
  * those n or 2 lines; fixed before it starts. */
-static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_real *sag)
+static CP_NOINLINE int walk_sag(const struct canal_path *tp, uint32_t gsteps, cp_real *sag)
 {
     struct quad q;
     struct canal_jet j;
     struct canal_frame f[3];
     cp_real lam[3];
     uint32_t m = tp->substeps, i, k, l;
-    int lines = tp->mode == TOOLPATH_LINES;
-    uint32_t nl = lines ? tp->n : 2u;
+    int lines = tp->head.mode == RASTER_LINES;
+    uint32_t nl = lines ? tp->head.n : 2u;
     cp_real smax = CP_R(0.0);
     quad_reset(&tp->surf, &q, &j);
     canal_frame(&j, &f[0]);
@@ -356,11 +362,11 @@ static CP_NOINLINE int walk_sag(const struct toolpath *tp, uint32_t gsteps, cp_r
  * LINK_PROBES: a circle k = 0..LINK_PROBES, a link only its interior k = 1..LINK_PROBES - 1
  * (its ends are its lines' nodes, which walk_sag checked). CP_ERR_CUSP on a failed probe,
  * else CP_OK. */
-static CP_NOINLINE int arc_probe(const struct toolpath *tp, const struct canal_frame *f,
+static CP_NOINLINE int arc_probe(const struct canal_path *tp, const struct canal_frame *f,
                                  cp_real ha, cp_real ba, cp_real hb, cp_real bb, cp_real tol,
                                  int lerp, uint32_t *worst)
 {
-    cp_real off = tp->output == TOOLPATH_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
+    cp_real off = tp->output == RASTER_OUT_SURFACE ? CP_R(0.0) : tp->tool_r;
     cp_real gap = label_gap(f, ha, ba, hb, bb), widen = CP_R(1.0), sn, cs;
     uint32_t segs, k;
     if (lerp) {
@@ -385,23 +391,23 @@ static CP_NOINLINE int arc_probe(const struct toolpath *tp, const struct canal_f
 
 /* Derive the link count of LINES mode: the largest angle gap between neighbouring
  * lines at t0 and t1 on circles of radius (R - off)/q (arc_probe). */
-static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
+static CP_NOINLINE int lines_link(struct canal_path *tp, cp_real tol)
 {
     struct quad q;
     struct canal_jet j;
     struct canal_frame f;
     uint32_t end, jl, worst = 1u;
-    if (tp->n <= 1u) {
-        tp->link = 0u;
+    if (tp->head.n <= 1u) {
+        tp->head.link = 0u;
         return CP_OK;
     }
     for (end = 0; end < 2u; end++) {
         quad_reset(&tp->surf, &q, &j);
         if (end == 1u) {
-            quad_march(tp, &q, 0u, (uint32_t)tp->steps * tp->substeps, 1, tp->hp, &j);
+            quad_march(tp, &q, 0u, (uint32_t)tp->head.steps * tp->substeps, 1, tp->hp, &j);
         }
         canal_frame(&j, &f);
-        for (jl = 0; jl + 1u < tp->n; jl++) {
+        for (jl = 0; jl + 1u < tp->head.n; jl++) {
             cp_real aa, ba, ab, bb;
             line_label(tp, jl, &aa, &ba);
             line_label(tp, jl + 1u, &ab, &bb);
@@ -414,7 +420,7 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
     if (worst - 1u > CP_MAX_LINK) {
         return CP_ERR_TOL;
     }
-    tp->link = (uint16_t)(worst - 1u);
+    tp->head.link = (uint16_t)(worst - 1u);
     return CP_OK;
 }
 
@@ -422,16 +428,16 @@ static CP_NOINLINE int lines_link(struct toolpath *tp, cp_real tol)
 /* The raster checks shared with the other models (raster_check: INVAL, NONFINITE, RANGE,
  * TOO_MANY, TOOL in that order) after the canal's own kinds (labels, span: INVAL first),
  * then substeps. */
-static int validate(const struct toolpath_cfg *cfg)
+static int validate(const struct raster_cfg *cfg)
 {
     int err;
     /* labels and span are each 0 or 1; span ANGLE needs CIRCLES and angle labels */
     if ((cfg->labels | cfg->span) > 1u ||
-        (cfg->span == TOOLPATH_SPAN_ANGLE &&
-         (cfg->mode != TOOLPATH_CIRCLES || cfg->labels != TOOLPATH_LABEL_ANGLE))) {
+        (cfg->span == RASTER_SPAN_ANGLE &&
+         (cfg->mode != RASTER_CIRCLES || cfg->labels != RASTER_LABEL_ANGLE))) {
         return CP_ERR_INVAL;
     }
-    err = raster_check(cfg, cfg->labels == TOOLPATH_LABEL_LAMBDA ? CANAL_COORD_MAX : CP_PI);
+    err = raster_check(cfg, cfg->labels == RASTER_LABEL_LAMBDA ? CANAL_COORD_MAX : CP_PI);
     if (err == CP_OK && cfg->substeps > CP_MAX_SUBSTEPS) {
         err = CP_ERR_TOO_MANY;
     }
@@ -441,7 +447,7 @@ static int validate(const struct toolpath_cfg *cfg)
 /* CIRCLES mode, every node of the grid (gsteps steps, at least 1): both bounding lines
  * regular; at each circle (node c (link + 1)) its points regular, and the step count
  * its exact sagitta needs (*worst). */
-static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol, uint32_t *worst)
+static int circles_nodes(const struct canal_path *tp, uint32_t gsteps, cp_real tol, uint32_t *worst)
 {
     uint32_t m = tp->substeps, i;
     struct quad q;
@@ -462,7 +468,7 @@ static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol
             return CP_ERR_CUSP;
         }
         /* a circle: its points, and the step count from its exact sagitta */
-        if (i % (tp->link + 1u) == 0u &&
+        if (i % (tp->head.link + 1u) == 0u &&
             arc_probe(tp, &f, aa, ba, ab, bb, tol, 0, worst) != CP_OK) {
             return CP_ERR_CUSP;
         }
@@ -474,8 +480,11 @@ static int circles_nodes(const struct toolpath *tp, uint32_t gsteps, cp_real tol
  * 16; an estimate above CP_MAX_STEPS is tried at CP_MAX_STEPS once), CIRCLES link + 1
  * (from 1; CP_ERR_TOL above CP_MAX_LINK + 1). Both verify a count whose measured midpoint
  * sagitta is <= SAG_MARGIN tol and aim the h^2 estimate at the same. */
-static const struct raster_rule canal_rule[2] = {{SAG_MARGIN, SAG_MARGIN, 16u, 0u, 31u, 1u},
-                                                 {SAG_MARGIN, SAG_MARGIN, 16u, 0u, 31u, 0u}};
+static const struct raster_rule canal_rule[2] = {
+    [RASTER_LINES] = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 16u, .pilot = 0u,
+                      .grow_shift = 31u, .clamp = 1u},
+    [RASTER_CIRCLES] = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 16u, .pilot = 0u,
+                        .grow_shift = 31u, .clamp = 0u}};
 
 /* Fix the grid of either mode, refining g by the search of raster_fit (canal_rule; at most
  * RASTER_FIT_ROUNDS + 1 walks), then the counts the stream needs. g is what the rounds
@@ -485,21 +494,21 @@ static const struct raster_rule canal_rule[2] = {{SAG_MARGIN, SAG_MARGIN, 16u, 0
  * `panels` and walks the grid (walk_sag; CIRCLES also circles_nodes, and walk_sag only
  * when the link is derived). LINES then derives the link (lines_link), CIRCLES the steps
  * per circle (the worst circle sagitta). */
-static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32_t panels)
+static int init_grid(struct canal_path *tp, const struct raster_cfg *cfg, uint32_t panels)
 {
     struct raster_fit fit;
     cp_real sag[2] = {CP_R(0.0), CP_R(0.0)}; /* the count not refined here stays verified */
-    int lines = tp->mode == TOOLPATH_LINES;
+    int lines = tp->head.mode == RASTER_LINES;
     unsigned q = lines ? 0u : 1u;
     uint32_t worst = 1u;
     int round, err = CP_OK;
-    raster_fit_begin(&fit, cfg, &canal_rule[q]);
+    raster_fit_begin(&fit, cfg, &canal_rule[tp->head.mode]);
     for (round = 0; round <= RASTER_FIT_ROUNDS; round++) {
         uint32_t g = fit.m[q], gsteps, m;
-        if (!lines && tp->n < 2u && cfg->link != TOOLPATH_LINK_AUTO) {
+        if (!lines && tp->head.n < 2u && cfg->link != RASTER_LINK_AUTO) {
             g = cfg->link + 1u;
         }
-        gsteps = lines ? g : (tp->n > 1u ? (uint32_t)(tp->n - 1u) * g : 1u);
+        gsteps = lines ? g : (tp->head.n > 1u ? (uint32_t)(tp->head.n - 1u) * g : 1u);
         /* panels >= 1, so m >= 1 */
         m = cfg->substeps ? cfg->substeps : (panels + gsteps - 1u) / gsteps;
         if (gsteps > CP_MAX_STEPS * 4u) {
@@ -510,9 +519,9 @@ static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32
         }
         tp->substeps = (uint16_t)m;
         if (lines) {
-            tp->steps = (uint16_t)g;
+            tp->head.steps = (uint16_t)g;
         } else {
-            tp->link = (uint16_t)(g - 1u);
+            tp->head.link = (uint16_t)(g - 1u);
         }
         tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
         err = lines ? CP_OK : circles_nodes(tp, gsteps, fit.tol, &worst);
@@ -533,33 +542,36 @@ static int init_grid(struct toolpath *tp, const struct toolpath_cfg *cfg, uint32
     if (lines) {
         /* link arcs: regularity always, count from the tolerance unless given */
         err = lines_link(tp, fit.tol);
-        if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != TOOLPATH_LINK_AUTO)) {
+        if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != RASTER_LINK_AUTO)) {
             return err;
         }
-        if (cfg->link != TOOLPATH_LINK_AUTO) {
-            tp->link = tp->n > 1u ? cfg->link : 0u;
+        if (cfg->link != RASTER_LINK_AUTO) {
+            tp->head.link = tp->head.n > 1u ? cfg->link : 0u;
         }
     } else if (cfg->steps != 0u) {
-        tp->steps = cfg->steps;
+        tp->head.steps = cfg->steps;
     } else {
         if (worst > CP_MAX_STEPS) {
             return CP_ERR_TOL;
         }
-        tp->steps = (uint16_t)worst;
+        tp->head.steps = (uint16_t)worst;
     }
     return CP_OK;
 }
 
-int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
+int canal_path_init(struct canal_path *tp, const struct canal_cfg *surf,
+                    const struct raster_cfg *cfg)
 {
     struct canal_jet j;
     struct canal_frame f;
     uint32_t panels;
     int err;
-    if (tp == NULL || cfg == NULL) {
+    if (tp == NULL || surf == NULL || cfg == NULL) {
         return CP_ERR_INVAL;
     }
-    err = canal_init(&tp->surf, &cfg->surf);
+    tp->head.count = 0u; /* (until init succeeds) */
+    tp->head.k = 0u;
+    err = canal_init(&tp->surf, surf);
     if (err != CP_OK) {
         return err;
     }
@@ -570,11 +582,11 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     if (cfg->tool_r >= tp->surf.rmin) {
         return CP_ERR_TOOL;
     }
-    tp->mode = cfg->mode;
+    tp->head.mode = cfg->mode;
     tp->output = cfg->output;
     tp->labels = cfg->labels;
     tp->span = cfg->span;
-    tp->n = cfg->n;
+    tp->head.n = cfg->n;
     tp->u0 = cfg->u0;
     tp->u1 = cfg->u1;
     tp->tool_r = cfg->tool_r;
@@ -582,38 +594,38 @@ int toolpath_init(struct toolpath *tp, const struct toolpath_cfg *cfg)
     canal_frame_pt(&j, &f);
     tp->q0 = cp_sqrt(f.q2);
     tp->r0 = j.r;
-    tp->lab_d = tp->n > 1u ? CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->n - 1u) : CP_R(0.0);
+    tp->lab_d = tp->head.n > 1u ? CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->head.n - 1u) : CP_R(0.0);
     panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
     err = init_grid(tp, cfg, panels);
     if (err != CP_OK) {
         return err;
     }
     /* n <= CP_MAX_LINES, steps <= CP_MAX_STEPS, link <= CP_MAX_LINK: no overflow */
-    tp->count = raster_count(tp->n, tp->steps, tp->link);
-    return toolpath_seek(tp, 0u); /* also clears the label caches */
+    tp->head.count = raster_count(tp->head.n, tp->head.steps, tp->head.link);
+    return canal_path_seek(tp, 0u); /* also clears the label caches */
 }
 
-uint32_t toolpath_count(const struct toolpath *tp)
+uint32_t canal_path_count(const struct canal_path *tp)
 {
-    return tp->count;
+    return tp->head.count;
 }
 
 /* Bring the quadrature to half-node `target` and leave the jet there in *j. One output
  * step on from the current node (forward, or backward with `back`) marches that step;
- * at the node, only the jet; from anywhere else (or no state: node 0xFFFFFFFF is odd,
- * and targets are even, so it matches no case above) along the deterministic route of
- * the stream from half-node 0: forward, or for `back` (LINES odd lines) forward to the
+ * at the node, only the jet; from anywhere else (or no state: quad_valid 0) along the
+ * deterministic route of the stream from half-node 0: forward, or for `back` (LINES odd lines) forward to the
  * last node of a line and then backward. Lambda is snapped to its exact value 0 when a
  * backward march reaches t0 (*j is then already the jet at t0). */
-static CP_NOINLINE void quad_to(struct toolpath *tp, uint32_t target, int back, struct canal_jet *j)
+static CP_NOINLINE void quad_to(struct canal_path *tp, uint32_t target, int back, struct canal_jet *j)
 {
     struct quad q;
     uint32_t m2 = 2u * tp->substeps, from = tp->node;
-    if (from == target) {
+    int valid = tp->quad_valid != 0u;
+    if (valid && from == target) {
         canal_jet(&tp->surf, t_at(tp, target, tp->hp), j);
         return;
     }
-    if (back ? from == target + m2 : target == from + m2) {
+    if (valid && (back ? from == target + m2 : target == from + m2)) {
         q.lam = tp->lam;
         q.comp = tp->comp;
         q.g = tp->g_node;
@@ -622,7 +634,7 @@ static CP_NOINLINE void quad_to(struct toolpath *tp, uint32_t target, int back, 
         quad_reset(&tp->surf, &q, j);
         from = 0u;
         if (back) {
-            from = m2 * tp->steps;
+            from = m2 * tp->head.steps;
             quad_march(tp, &q, 0u, from / 2u, 1, tp->hp, j);
         }
         quad_march(tp, &q, from, (back ? from - target : target - from) / 2u, !back, tp->hp, j);
@@ -631,25 +643,26 @@ static CP_NOINLINE void quad_to(struct toolpath *tp, uint32_t target, int back, 
         q.lam = CP_R(0.0); /* snap to the exact Lambda(t0) */
         q.comp = CP_R(0.0);
     }
+    tp->quad_valid = 1u;
     tp->node = target;
     tp->lam = q.lam;
     tp->comp = q.comp;
     tp->g_node = q.g;
 }
 
-int toolpath_seek(struct toolpath *tp, uint32_t k)
+int canal_path_seek(struct canal_path *tp, uint32_t k)
 {
-    if (k > tp->count) {
+    if (raster_seek(&tp->head, k) != CP_OK) {
         return CP_ERR_RANGE;
     }
-    tp->k = k;
-    tp->node = 0xFFFFFFFFu; /* no quadrature state yet: next() positions it */
-    if (k == 0u && tp->mode == TOOLPATH_CIRCLES) {
+    tp->quad_valid = 0u; /* no quadrature state yet: next() positions it */
+    if (k == 0u && tp->head.mode == RASTER_CIRCLES) {
         /* the stream starts at node 0: set it up now, so the first point costs what
          * every other point costs */
         struct quad q;
         struct canal_jet jt;
         quad_reset(&tp->surf, &q, &jt);
+        tp->quad_valid = 1u;
         tp->node = 0u;
         tp->lam = q.lam;
         tp->comp = q.comp;
@@ -658,13 +671,13 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
     tp->lab_line = -1;
     tp->lab2_line = -1;
     tp->st_line = -1;
-    if (tp->mode == TOOLPATH_LINES && k < tp->count) {
+    if (tp->head.mode == RASTER_LINES && k < tp->head.count) {
         /* make the labels of k's line and of the next line now, so that the stream
          * itself never pays a whole label (seek is the resume path, not the hot one) */
-        uint32_t jl = k / ((uint32_t)tp->steps + 1u + tp->link);
+        uint32_t jl = k / ((uint32_t)tp->head.steps + 1u + tp->head.link);
         line_label(tp, jl, &tp->lab_a, &tp->lab_b);
         tp->lab_line = (int32_t)jl;
-        if (jl + 1u < tp->n) {
+        if (jl + 1u < tp->head.n) {
             line_label(tp, jl + 1u, &tp->lab2_a, &tp->lab2_b);
             tp->lab2_line = (int32_t)(jl + 1u);
         }
@@ -674,7 +687,7 @@ int toolpath_seek(struct toolpath *tp, uint32_t k)
 
 /* Copy a computed point out, refusing a non-finite one. */
 static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int line,
-                                   uint32_t index, struct toolpath_pt *pt)
+                                   uint32_t index, struct raster_pt *pt)
 {
     /* one test covers all six: m = (x + rr nx, y + rr ny, off + rr wb) with n = (nx,
      * ny, wb - 1) and rr = R - off >= rmin - tool_r > 0 (init), so a NaN or Inf in n
@@ -695,9 +708,9 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
  * the label of jl is taken from the next-line cache; at the point before its last the
  * first half of line jl + 1's label is made (cp_sincos_stage1), at its last point the
  * second half (stage2), so no point pays a whole sincos. A point whose cache is not
- * ready (impossible after toolpath_seek, which makes both labels; kept as a guard)
+ * ready (impossible after canal_path_seek, which makes both labels; kept as a guard)
  * makes what it needs itself. LAMBDA labels need no sincos: made at once. */
-static CP_NOINLINE void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r)
+static CP_NOINLINE void line_labels(struct canal_path *tp, uint32_t jl, uint32_t r)
 {
     uint32_t nx = jl + 1u;
     if (tp->lab_line != (int32_t)jl) {
@@ -709,10 +722,10 @@ static CP_NOINLINE void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r
         }
         tp->lab_line = (int32_t)jl;
     }
-    if (r + 1u < tp->steps || nx >= tp->n || tp->lab2_line == (int32_t)nx) {
+    if (r + 1u < tp->head.steps || nx >= tp->head.n || tp->lab2_line == (int32_t)nx) {
         return;
     }
-    if (tp->labels == TOOLPATH_LABEL_LAMBDA) {
+    if (tp->labels == RASTER_LABEL_LAMBDA) {
         line_label(tp, nx, &tp->lab2_a, &tp->lab2_b);
         tp->lab2_line = (int32_t)nx;
         return;
@@ -721,7 +734,7 @@ static CP_NOINLINE void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r
         cp_sincos_stage1(line_half_angle(tp, nx), &tp->st);
         tp->st_line = (int32_t)nx;
     }
-    if (r >= tp->steps) {
+    if (r >= tp->head.steps) {
         cp_real sn, cs;
         cp_sincos_stage2(&tp->st, &sn, &cs);
         tp->lab2_a = tp->q0 * cs;
@@ -735,22 +748,22 @@ static CP_NOINLINE void line_labels(struct toolpath *tp, uint32_t jl, uint32_t r
  * blocks run backwards. A link point sits at the end of its line (LINES: the node of
  * index i, as its last point) or on the bounding line between two circles (CIRCLES:
  * the link's own node, forward). */
-int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
+int canal_path_next(struct canal_path *tp, struct raster_pt *pt)
 {
-    uint32_t block = (uint32_t)tp->steps + 1u + tp->link;
-    uint32_t jl = tp->k / block, r = tp->k % block;
-    uint32_t rr = r <= tp->steps ? r : tp->steps, i, a;
-    int back = (int)(jl & 1u), lines = tp->mode == TOOLPATH_LINES, err;
+    uint32_t block = (uint32_t)tp->head.steps + 1u + tp->head.link;
+    uint32_t jl = tp->head.k / block, r = tp->head.k % block;
+    uint32_t rr = r <= tp->head.steps ? r : tp->head.steps, i, a;
+    int back = (int)(jl & 1u), lines = tp->head.mode == RASTER_LINES, err;
     struct canal_jet j;
     struct canal_frame f;
     struct canal_point cp;
     cp_real t, hh, b2;
-    if (tp->k >= tp->count) {
+    if (tp->head.k >= tp->head.count) {
         return CP_ERR_DONE;
     }
-    i = back ? tp->steps - rr : rr;
+    i = back ? tp->head.steps - rr : rr;
     if (!lines) {
-        a = (jl * (tp->link + 1u) + (r - rr)) * (2u * tp->substeps);
+        a = (jl * (tp->head.link + 1u) + (r - rr)) * (2u * tp->substeps);
         t = t_at(tp, a, tp->hp);
         quad_to(tp, a, 0, &j);
     } else {
@@ -760,10 +773,10 @@ int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
             /* constant curvature: exact Lambda, no quadrature state to march */
             canal_jet1(&tp->surf, t, &j);
             tp->lam = tp->surf.kappa_c * (j.r - tp->r0);
-            tp->node = 0xFFFFFFFFu;
+            tp->quad_valid = 0u;
         } else {
             if (r == 0u && !back) {
-                tp->node = 0xFFFFFFFFu; /* an even line starts at t0 afresh: Lambda = 0 */
+                tp->quad_valid = 0u; /* an even line starts at t0 afresh: Lambda = 0 */
             }
             /* (an odd line starts, r = 0, at the node where the previous line ended, or
              * after a seek from scratch: forward to it, then no backward panel) */
@@ -772,17 +785,17 @@ int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
     }
     canal_frame_pt(&j, &f);
     if (lines) {
-        if (tp->lab_line != (int32_t)jl || r + 1u >= tp->steps) {
+        if (tp->lab_line != (int32_t)jl || r + 1u >= tp->head.steps) {
             line_labels(tp, jl, r); /* a line's first and last two points, its links */
         }
         hh = tp->lab_a + tp->lam * tp->lab_b; /* the streaming hot path */
         b2 = tp->lab_b;
-        if (r > tp->steps) {
+        if (r > tp->head.steps) {
             /* link point: between the labels of lines jl and jl + 1 (both cached: the
              * next one was made at the line's last point) */
             cp_real hl, bl; /* (not hh, b2 themselves: their address would cost the hot path) */
             label_lerp(&f, hh, b2, tp->lab2_a + tp->lam * tp->lab2_b, tp->lab2_b,
-                       (cp_real)(r - tp->steps) / (cp_real)(tp->link + 1u), &hl, &bl);
+                       (cp_real)(r - tp->head.steps) / (cp_real)(tp->head.link + 1u), &hl, &bl);
             hh = hl;
             b2 = bl;
         }
@@ -794,22 +807,22 @@ int toolpath_next(struct toolpath *tp, struct toolpath_pt *pt)
          * labels too, still less work than a circle point) */
         hh = back ? aa : ab;
         b2 = back ? ba : bb;
-        if (r <= tp->steps) {
-            label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->steps, &aa, &ba);
+        if (r <= tp->head.steps) {
+            label_between(&f, aa, ba, ab, bb, (cp_real)i / (cp_real)tp->head.steps, &aa, &ba);
             hh = aa;
             b2 = ba;
         }
     }
     emit_inline(tp, &f, hh, b2, &cp);
-    err = finish(&cp, t, r > tp->steps ? -1 : (int)jl, r > tp->steps ? r - tp->steps : i, pt);
+    err = finish(&cp, t, r > tp->head.steps ? -1 : (int)jl, r > tp->head.steps ? r - tp->head.steps : i, pt);
     if (err == CP_OK) {
-        tp->k++;
+        tp->head.k++;
     }
     return err;
 }
 
 #if CP_REAL_DOUBLE
-CP_STATIC_ASSERT(sizeof(struct toolpath) <= 2u * CP_TOOLPATH_BUDGET, toolpath_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct canal_path) <= 2u * CP_CANAL_PATH_BUDGET, canal_path_fits_budget);
 #else
-CP_STATIC_ASSERT(sizeof(struct toolpath) <= CP_TOOLPATH_BUDGET, toolpath_fits_budget);
+CP_STATIC_ASSERT(sizeof(struct canal_path) <= CP_CANAL_PATH_BUDGET, canal_path_fits_budget);
 #endif
