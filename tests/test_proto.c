@@ -71,7 +71,7 @@ int test_proto_info(void)
              "[VER:canalpath %s proto %d]\n[OPT:real=%s,line=%d,tx=%d,steps=%d,sub=%d,lines=%d,"
              "link=%d,window=%d,models=CANAL%s%s%s]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
-             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)PROTO_WINDOW,
+             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)OUT_FRAMES_WINDOW,
              PATH_HAVE_GSR ? "+GSR" : "", PATH_HAVE_CHANNEL ? "+CHANNEL" : "",
              PATH_HAVE_DRC ? "+DRC" : "");
     i = strlen(want);
