@@ -7,9 +7,18 @@
  * state during a run (struct out_<name>, a member of the union `out` in struct proto),
  * and the calls proto.c makes directly at its seams - start a run, emit the next
  * stream item, take what the peer sends, finish the run (see out_gcode.h, out_frames.h).
- * Adding an output: docs/ARCHITECTURE.md. The modules never read the clock or touch
- * the UART: the engine passes the time in ms (or the clock where it is read only on
- * some paths) and a buffer to append the stream bytes to.
+ *
+ * Adding an output format (a machine dialect, a 5-axis form):
+ *   1. firmware/out_<name>.[ch]: struct out_<name> and its calls, in the shape of
+ *      out_gcode.h (text answers from a machine) or out_frames.h (bytes from a host);
+ *   2. its JOB_<NAME> in enum job_format and its FORMAT word (job.c);
+ *   3. its member in proto.h's union `out`, and one case in each switch on
+ *      (enum job_format) in proto.c - run_start, run_emit, run_finish, machine_answer,
+ *      feed; -Wswitch (-Wall -Werror) names every switch that still lacks it.
+ * The modules never read the clock or touch the UART: the engine reads the time where
+ * a module needs it (exactly where it always did: the in-memory HAL's clock of the
+ * tests advances on every read) and passes it in ms, with a buffer to append stream
+ * bytes to.
  */
 #ifndef OUT_H
 #define OUT_H

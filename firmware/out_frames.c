@@ -108,18 +108,17 @@ int out_frames_emit(struct out_frames *f, struct out_run *run, struct path *path
     return OUT_GOING;
 }
 
-enum out_frames_control out_frames_feed(struct out_frames *f, struct out_run *run, uint8_t c,
-                                        const struct hal_uart *clock)
+int out_frames_rx(struct out_frames *f, uint8_t c)
+{
+    return frame_rx_feed(&f->rx, c);
+}
+
+enum out_frames_control out_frames_take(struct out_frames *f, struct out_run *run, uint32_t now)
 {
     const uint8_t *fr = f->rx.buf;
-    uint32_t now, full;
-    if (!frame_rx_feed(&f->rx, c)) {
-        return OUT_FRAMES_NONE;
-    }
-    now = hal_uart_now_ms(clock);
     /* the full sequence number of the 8-bit seq, counted from acked; it is one of ours
      * only if it is <= next */
-    full = run->acked + (uint8_t)(fr[1] - (uint8_t)run->acked);
+    uint32_t full = run->acked + (uint8_t)(fr[1] - (uint8_t)run->acked);
     switch (fr[2]) {
     case FRAME_ACK:
         if (full <= run->next && full > run->acked) {
@@ -162,15 +161,12 @@ size_t out_frames_finish(const struct out_frames *f, const struct out_run *run, 
 /*---------------------------------------------------------------------------
  * The tail after a FRAMES run
  *-------------------------------------------------------------------------*/
-int out_frames_tail_take(struct out_frames_tail *t, uint8_t c, const struct hal_uart *clock)
+enum out_frames_tail_use out_frames_tail_take(struct out_frames_tail *t, uint8_t c)
 {
     uint8_t n = t->len;
     int ok = 1;
-    if (n == 0u) {
-        if (c != FRAME_MIN) {
-            return 0; /* text */
-        }
-        t->t0 = hal_uart_now_ms(clock);
+    if (n == 0u && c != FRAME_MIN) {
+        return OUT_FRAMES_TAIL_TEXT;
     }
     t->buf[n++] = c;
     t->len = n;
@@ -181,19 +177,28 @@ int out_frames_tail_take(struct out_frames_tail *t, uint8_t c, const struct hal_
         ok = c == FRAME_SYNC && frame_crc16(0xFFFFu, t->buf, FRAME_MIN - 1u) == 0u;
         if (ok) {
             t->len = 0; /* a late frame: dropped */
-            return 1;
+            return OUT_FRAMES_TAIL_HELD;
         }
     }
     if (!ok) {
         t->replay = n; /* not a frame: the engine replays the held bytes as text */
     }
-    return 1;
+    return n == 1u ? OUT_FRAMES_TAIL_STARTED : OUT_FRAMES_TAIL_HELD;
 }
 
-void out_frames_tail_stalled(struct out_frames_tail *t, const struct hal_uart *clock)
+void out_frames_tail_started(struct out_frames_tail *t, uint32_t now)
 {
-    if (t->len > 0u && t->replay == 0u &&
-        (uint32_t)(hal_uart_now_ms(clock) - t->t0) >= OUT_FRAMES_TAIL_MS) {
+    t->t0 = now;
+}
+
+int out_frames_tail_waiting(const struct out_frames_tail *t)
+{
+    return t->len > 0u && t->replay == 0u;
+}
+
+void out_frames_tail_stalled(struct out_frames_tail *t, uint32_t now)
+{
+    if (out_frames_tail_waiting(t) && (uint32_t)(now - t->t0) >= OUT_FRAMES_TAIL_MS) {
         t->replay = t->len;
     }
 }

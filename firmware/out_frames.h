@@ -16,7 +16,6 @@
 #define OUT_FRAMES_H
 
 #include "frame.h"
-#include "hal_uart.h"
 #include "out.h"
 
 /* Unacknowledged frames in flight (1..64; $I reports it as window=). */
@@ -69,11 +68,13 @@ void out_frames_start(struct out_frames *f, struct out_run *run, const struct pa
 int out_frames_emit(struct out_frames *f, struct out_run *run, struct path *path,
                     uint32_t now, int sending, uint8_t *out, size_t cap, size_t *len);
 
-/* Feed one byte from the host. When it completes a valid frame, reads the clock
- * (hal_uart_now_ms) once, takes ACK/NAK into run and returns the control the frame
- * asks for; otherwise returns OUT_FRAMES_NONE. */
-enum out_frames_control out_frames_feed(struct out_frames *f, struct out_run *run, uint8_t c,
-                                        const struct hal_uart *clock);
+/* Feed one byte from the host to the decoder. Returns 1 when it completes a valid frame
+ * (take it with out_frames_take before the next byte), else 0. */
+int out_frames_rx(struct out_frames *f, uint8_t c);
+
+/* Take the frame just decoded, received at now (ms): ACK and NAK move run->acked and
+ * run->next (and restart run->t_last); returns the control the frame asks for. */
+enum out_frames_control out_frames_take(struct out_frames *f, struct out_run *run, uint32_t now);
 
 /* The END frame of a run that stops early with `status` (not CP_ST_OK: a complete run
  * sent its END as its last item), numbered run->next, with the points sent so far.
@@ -97,14 +98,25 @@ struct out_frames_tail {
     uint8_t buf[FRAME_MIN]; /* a possible late host frame */
 };
 
-/* Offer a byte received while idle and the tail is open. Returns 1 if the tail took it
- * (held, or the end of a late frame, dropped), 0 if it is text. Reads the clock
- * (hal_uart_now_ms) only when a new 0x06 starts a held prefix. */
-int out_frames_tail_take(struct out_frames_tail *t, uint8_t c, const struct hal_uart *clock);
+/* What the tail did with a byte (out_frames_tail_take). */
+enum out_frames_tail_use {
+    OUT_FRAMES_TAIL_TEXT = 0, /* not taken: the byte is text */
+    OUT_FRAMES_TAIL_HELD,     /* held (or the end of a late frame, dropped) */
+    OUT_FRAMES_TAIL_STARTED   /* a 0x06 started a held prefix: stamp it (tail_started) */
+};
 
-/* No byte is waiting: a held prefix that has stalled OUT_FRAMES_TAIL_MS is not a frame
- * and is to be replayed. Reads the clock only when a prefix is held and not replaying. */
-void out_frames_tail_stalled(struct out_frames_tail *t, const struct hal_uart *clock);
+/* Offer a byte received while the tail is open. */
+enum out_frames_tail_use out_frames_tail_take(struct out_frames_tail *t, uint8_t c);
+
+/* The time (ms) of the byte that made out_frames_tail_take return STARTED. */
+void out_frames_tail_started(struct out_frames_tail *t, uint32_t now);
+
+/* 1 if a prefix is held and waits for its next byte (then out_frames_tail_stalled). */
+int out_frames_tail_waiting(const struct out_frames_tail *t);
+
+/* No byte is waiting at now (ms): a held prefix that has waited OUT_FRAMES_TAIL_MS is
+ * not a frame and is to be replayed. */
+void out_frames_tail_stalled(struct out_frames_tail *t, uint32_t now);
 
 /* The next held byte to replay as text (call only while t->replay > 0). */
 uint8_t out_frames_tail_next(struct out_frames_tail *t);

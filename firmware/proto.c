@@ -394,6 +394,24 @@ static void feed_text(struct proto *p, uint8_t c)
     p->line[p->line_len++] = (char)c;
 }
 
+/* A host frame's run control during a FRAMES run (the binary real-time bytes). */
+static void frames_control(struct proto *p, enum out_frames_control c)
+{
+    switch (c) {
+    case OUT_FRAMES_ABORT:
+        run_finish(p, CP_ST_ABORTED);
+        break;
+    case OUT_FRAMES_HOLD:
+        p->state = PROTO_HOLD;
+        break;
+    case OUT_FRAMES_GO:
+        p->state = PROTO_RUN;
+        break;
+    case OUT_FRAMES_NONE:
+        break;
+    }
+}
+
 /* One received byte: to the run's output format if it reads bytes (FRAMES), else to
  * the late-frame tail of the last FRAMES run (not for bytes it replays itself), else
  * to the text path. */
@@ -404,24 +422,23 @@ static void feed(struct proto *p, uint8_t c, int replayed)
         case JOB_GCODE:
             break; /* the machine's answers are text lines */
         case JOB_FRAMES:
-            switch (out_frames_feed(&p->out.frames, &p->run, c, p->uart)) {
-            case OUT_FRAMES_ABORT:
-                run_finish(p, CP_ST_ABORTED);
-                break;
-            case OUT_FRAMES_HOLD:
-                p->state = PROTO_HOLD;
-                break;
-            case OUT_FRAMES_GO:
-                p->state = PROTO_RUN;
-                break;
-            case OUT_FRAMES_NONE:
-                break;
+            if (out_frames_rx(&p->out.frames, c)) {
+                frames_control(p, out_frames_take(&p->out.frames, &p->run,
+                                                  hal_uart_now_ms(p->uart)));
             }
             return; /* text and real-time bytes are not recognised during a FRAMES run */
         }
     }
-    if (!replayed && p->tail.open && out_frames_tail_take(&p->tail, c, p->uart)) {
-        return;
+    if (!replayed && p->tail.open) {
+        switch (out_frames_tail_take(&p->tail, c)) {
+        case OUT_FRAMES_TAIL_TEXT:
+            break;
+        case OUT_FRAMES_TAIL_STARTED:
+            out_frames_tail_started(&p->tail, hal_uart_now_ms(p->uart));
+            return;
+        case OUT_FRAMES_TAIL_HELD:
+            return;
+        }
     }
     feed_text(p, c);
 }
@@ -461,8 +478,8 @@ int proto_poll(struct proto *p)
     /* 3. consume bytes while a whole reply burst still fits (back-pressure:
      *    unread bytes stay in the HAL/kernel buffer, nothing is dropped); first the
      *    held bytes of a late-frame prefix that turned out to be text */
-    if (p->rx_pos == p->rx_len) {
-        out_frames_tail_stalled(&p->tail, p->uart);
+    if (p->rx_pos == p->rx_len && out_frames_tail_waiting(&p->tail)) {
+        out_frames_tail_stalled(&p->tail, hal_uart_now_ms(p->uart));
     }
     while (p->tail.replay > 0u && tx_room(p) >= PROTO_REPLY_MAX) { /* <= FRAME_MIN */
         feed(p, out_frames_tail_next(&p->tail), 1);
