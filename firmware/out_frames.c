@@ -146,11 +146,9 @@ enum out_frames_control out_frames_take(struct out_frames *f, struct out_run *ru
     }
 }
 
-size_t out_frames_finish(const struct out_frames *f, const struct out_run *run, int status,
-                         uint8_t *out, size_t cap)
+size_t out_frames_finish(const struct out_run *run, int status, uint8_t *out, size_t cap)
 {
     int n;
-    (void)f;
     if (status == CP_ST_OK) {
         return 0;
     }

@@ -45,10 +45,10 @@ struct out_frames {
     uint8_t retries;    /* consecutive timeouts without ACK progress */
 };
 
-/* What a host frame asks of the engine (out_frames_feed). ACK and NAK are handled
+/* What a host frame asks of the engine (out_frames_take). ACK and NAK are handled
  * inside; these are the run controls, the binary form of the real-time bytes. */
 enum out_frames_control {
-    OUT_FRAMES_NONE = 0, /* nothing (no complete frame yet, ACK, NAK, unknown type) */
+    OUT_FRAMES_NONE = 0, /* nothing (ACK, NAK, STATUS, an unknown type) */
     OUT_FRAMES_ABORT,    /* ABORT: end the run with CP_ST_ABORTED */
     OUT_FRAMES_HOLD,     /* HOLD: send no new frames */
     OUT_FRAMES_GO        /* GO: send again (run->t_last is restarted) */
@@ -79,8 +79,7 @@ enum out_frames_control out_frames_take(struct out_frames *f, struct out_run *ru
 /* The END frame of a run that stops early with `status` (not CP_ST_OK: a complete run
  * sent its END as its last item), numbered run->next, with the points sent so far.
  * Writes it to out[0..cap) (cap >= FRAME_MIN + 5); returns its length (0: no room). */
-size_t out_frames_finish(const struct out_frames *f, const struct out_run *run, int status,
-                         uint8_t *out, size_t cap);
+size_t out_frames_finish(const struct out_run *run, int status, uint8_t *out, size_t cap);
 
 /* The tail after a FRAMES run. The host may still send late 6-byte ACK/NAK frames (e.g.
  * for a retransmitted END). They start with len = 6 (0x06, never valid in text). While

@@ -161,8 +161,7 @@ static void run_finish(struct proto *p, int status)
     case JOB_FRAMES:
         /* tell a binary host why the stream stopped, then the text reply; late frames
          * of the host may still come */
-        n = out_frames_finish(&p->out.frames, &p->run, status, p->tx + p->tx_len,
-                              sizeof p->tx - p->tx_len);
+        n = out_frames_finish(&p->run, status, p->tx + p->tx_len, sizeof p->tx - p->tx_len);
         break;
     }
     p->tx_len = (uint16_t)(p->tx_len + n);

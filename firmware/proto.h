@@ -11,7 +11,7 @@
  * RESUME k. Real-time bytes (outside FRAMES runs): '?' status report,
  * '!' feed hold, '~' resume, 0x18 abort.
  *
- * RUN validates the job (toolpath_init) and streams it:
+ * RUN validates the job (path_init) and streams it:
  *   GCODE   "G21 G90 G17" then one "G1 X.. Y.. Z.. [F..]" per point, 4 decimals,
  *           optionally "N<n> ... *<cs>" (CHECKSUM ON). The firmware is the sender: it
  *           keeps the bytes of unacknowledged lines <= RXBUF (grbl character
@@ -43,6 +43,8 @@
 
 /* Worst-case length of one reply burst (the $I answer, or one stream item), bytes. */
 #define PROTO_REPLY_MAX 160
+/* Bytes read from the HAL at once (proto_poll consumes at most these per call). */
+#define PROTO_RX_CHUNK 32u
 
 #if CP_TX_BUF < PROTO_REPLY_MAX
 #error "CP_TX_BUF must hold one reply burst (PROTO_REPLY_MAX)"
@@ -63,7 +65,7 @@ struct proto {
     const struct hal_uart *uart;
     int err;                 /* sticky fatal error (CP_ERR_IO after hang-up), else 0 */
     uint32_t lines_seen;     /* complete lines received (diagnostics) */
-    uint8_t rx[32];          /* bytes read from the HAL, not yet consumed */
+    uint8_t rx[PROTO_RX_CHUNK]; /* bytes read from the HAL, not yet consumed */
     uint8_t rx_len, rx_pos;  /* valid bytes in rx[], next to consume */
     uint8_t last_cr;         /* previous byte was '\r' (so a following '\n' is skipped) */
     uint8_t line_flags;      /* PROTO_LF_* of the current line (proto.c) */
@@ -80,7 +82,8 @@ struct proto {
     uint8_t state;           /* enum proto_state */
     uint8_t fmt;             /* enum job_format of the current (or last) run */
     struct out_run run;      /* stream position, acknowledgements, peer clock */
-    union {                  /* the state of the run's output format (fmt) */
+    union {                  /* the state of the run's output format (fmt), set up by its
+                              * start call; meaningless while state is PROTO_IDLE */
         struct out_gcode gcode;
         struct out_frames frames;
     } out;
@@ -94,7 +97,7 @@ struct proto {
 CP_MUST_CHECK int proto_init(struct proto *p, const struct proto_cfg *cfg);
 
 /* Do one bounded slice of work: flush pending output, consume received bytes (at
- * most sizeof rx per call), emit at most one stream item. Returns > 0 if anything
+ * most PROTO_RX_CHUNK per call), emit at most one stream item. Returns > 0 if anything
  * moved, 0 if idle (the caller may sleep: WFI, poll()), or CP_ERR_IO (sticky) once
  * the HAL reports that the link is gone. */
 int proto_poll(struct proto *p);
