@@ -157,16 +157,17 @@ static void run_finish(struct proto *p, int status)
     size_t n = 0;
     switch ((enum job_format)p->fmt) {
     case JOB_GCODE:
+        p->tail.open = 0;
         break;
     case JOB_FRAMES:
         /* tell a binary host why the stream stopped, then the text reply; late frames
          * of the host may still come */
         n = out_frames_finish(&p->run, status, p->tx + p->tx_len, sizeof p->tx - p->tx_len);
+        p->tail.open = 1;
         break;
     }
     p->tx_len = (uint16_t)(p->tx_len + n);
     reply_status(p, status);
-    p->tail.open = (uint8_t)(p->fmt == JOB_FRAMES);
     p->state = PROTO_IDLE;
 }
 
