@@ -3,7 +3,7 @@
  */
 #include "out.h"
 
-int out_point(struct path *path, uint32_t k, struct toolpath_pt *pt)
+int out_point(struct path *path, uint32_t k, struct raster_pt *pt)
 {
     if (path_pos(path) != k && path_seek(path, k) != CP_OK) {
         return CP_ERR_RANGE;

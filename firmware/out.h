@@ -45,7 +45,7 @@ struct out_run {
 
 /* Position the iterator on point k (seek only if it is elsewhere) and fetch it.
  * Returns CP_OK, CP_ERR_RANGE when k is not a point of the path, or path_next's error. */
-int out_point(struct path *path, uint32_t k, struct toolpath_pt *pt);
+int out_point(struct path *path, uint32_t k, struct raster_pt *pt);
 
 /* v counted in units of 1/scale, rounded half up: floor(v * scale + 0.5), exact and the
  * same on every target (G-code and frame positions: scale 1e4, 0.1 um; frame normals:

@@ -11,7 +11,7 @@
 CP_STATIC_ASSERT(12 + 4 + 12 + 3 * (2 + 12) + 4 + 1 <= OUT_GCODE_LINE_MAX, gcode_line_fits);
 
 /* Append "G1 X.. Y.. Z.." (4 decimals) and " F.." (1 decimal) unless the feed is 0. */
-static void put_g1(char *out, size_t cap, size_t *pos, const struct toolpath_pt *pt,
+static void put_g1(char *out, size_t cap, size_t *pos, const struct raster_pt *pt,
                    cp_real feed)
 {
     (void)fmt_str(out, cap, pos, "G1 X");
@@ -44,7 +44,7 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
     } else if (idx + 1u == run->lead) {
         (void)fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
-        struct toolpath_pt pt;
+        struct raster_pt pt;
         int e = out_point(path, run->start_k + (idx - run->lead), &pt);
         if (e != CP_OK) {
             return e;
@@ -84,7 +84,7 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     (void)fmt_u32(s, cap, &pos, path_count(path));
     (void)fmt_str(s, cap, &pos, ",first=");
     (void)fmt_u32(s, cap, &pos, run->start_k);
-    (void)fmt_str(s, cap, &pos, path->info.mode == TOOLPATH_LINES ? ",mode=LINES" : ",mode=CIRCLES");
+    (void)fmt_str(s, cap, &pos, path->info.mode == RASTER_LINES ? ",mode=LINES" : ",mode=CIRCLES");
     (void)fmt_str(s, cap, &pos, ",n=");
     (void)fmt_u32(s, cap, &pos, path->info.n);
     (void)fmt_str(s, cap, &pos, ",steps=");

@@ -37,11 +37,11 @@ FUZZ_CFLAGS  := -std=c99 -g -fno-omit-frame-pointer $(FPFLAGS) $(INC) $(FUZZ_SAN
 # output number formatter (fmt) compare only values computed from parsed numbers or
 # from the fixed jobs of fuzz_run; a text number's binary image never occurs in the
 # input, so their compare hints never helped a mutation. In fuzz_run the hooks of
-# toolpath.c were ~10 % of the time, in fuzz_cmd those of the three models ~18 %.
+# canal_path.c were ~10 % of the time, in fuzz_cmd those of the three models ~18 %.
 # Byte-level code (proto, job*, parse, frame) keeps trace-cmp.
 FUZZ_FW_OPT  ?= -O2
 FUZZ_H_OPT   ?= -O2
-FUZZ_NOCMP   := canal cp_math drc gsr channel toolpath path fmt
+FUZZ_NOCMP   := canal cp_math drc gsr channel canal_path path fmt
 # fuzz_cmd and fuzz_run decode every byte the firmware sends, and encode the host's
 # frames, with frame.c. Through the firmware's object that ran its coverage and
 # trace-cmp hooks on every output byte (~20 % of fuzz_run). These two harnesses get

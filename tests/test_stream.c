@@ -118,10 +118,10 @@ static int load(const char *const *cmds)
 /* Reference stream: the iterator of the same job, quantized like the firmware. */
 static int ref_point(uint32_t k, long q[3])
 {
-    static struct toolpath tp;
-    struct toolpath_pt pt;
-    if (toolpath_init(&tp, &rig.p.job.cfg) != CP_OK || toolpath_seek(&tp, k) != CP_OK ||
-        toolpath_next(&tp, &pt) != CP_OK) {
+    static struct canal_path tp;
+    struct raster_pt pt;
+    if (canal_path_init(&tp, &rig.p.job.cfg) != CP_OK || canal_path_seek(&tp, k) != CP_OK ||
+        canal_path_next(&tp, &pt) != CP_OK) {
         return 0;
     }
     q[0] = (long)floor((double)(pt.p.x * CP_R(10000.0) + CP_R(0.5)));
