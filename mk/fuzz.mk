@@ -58,13 +58,13 @@ FUZZ_CFLAGS  += $(if $(FUZZ_STRICT),-DFUZZ_STRICT=1)
 #   full   $(BUILD)/fuzz        the shipped compile-time limits. fuzz-check uses it.
 #   small  $(BUILD)/fuzz-small  CP_MAX_STEPS=64, CP_MAX_LINES=8 (CP_MAX_LINK stays 64:
 #          the paper job needs 15-50 link points),
-#          PROTO_WINDOW=8: every job is at most a few hundred points, so a run ends
+#          OUT_FRAMES_WINDOW=8: every job is at most a few hundred points, so a run ends
 #          inside the poll budget and ~10x more inputs per second reach the end of a
 #          run, the resume/abort paths and the $I check. Jobs beyond the limits are
 #          rejected at RUN/command time with their documented codes (error:14, 17),
 #          which the harness checks like any reply. Default of `make fuzz`.
 FUZZ_CONF    ?= small
-FUZZ_SMALL_DEFS := -DCP_MAX_STEPS=64 -DCP_MAX_LINES=8 -DPROTO_WINDOW=8u
+FUZZ_SMALL_DEFS := -DCP_MAX_STEPS=64 -DCP_MAX_LINES=8 -DOUT_FRAMES_WINDOW=8u
 FUZZ_SFX     := $(if $(FUZZ_STRICT),,-lenient)
 FUZZ_DIR     := $(BUILD)/fuzz$(FUZZ_SFX)
 FUZZ_SDIR    := $(BUILD)/fuzz-small$(FUZZ_SFX)

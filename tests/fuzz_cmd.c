@@ -43,8 +43,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
         abort();                                   \
     } while (0)
 
-/* The text of each code, from cp_status.def: the harness's own table (the firmware
- * packs the texts into one string), so checking an error line does not run the
+/* The text of each code, from cp_status.def: the harness's own table (built as the
+ * firmware's), so checking an error line does not run the
  * firmware's instrumented cp_status_text - 2 % of fuzz_cmd - and its table is
  * checked too. */
 static const char *const status_text[CP_ST_END_] = {
@@ -589,8 +589,8 @@ static void feed_piece(const uint8_t *b, size_t n)
                 FAIL("hang: %d polls without reading input (state %d, in %u/%u, rx %u/%u, "
                      "tx %u/%u, pend %u, ring %u, inflight %u, line_len %u)",
                      stall, eng.state, (unsigned)mem.in_pos, (unsigned)mem.in_len, eng.rx_pos,
-                     eng.rx_len, eng.tx_pos, eng.tx_len, eng.pend_len, eng.ring_n, eng.inflight,
-                     eng.line_len);
+                     eng.rx_len, eng.tx_pos, eng.tx_len, eng.out.gcode.pend_len,
+                     eng.out.gcode.ring_n, eng.out.gcode.inflight, eng.line_len);
             }
         } else {
             stall = 0;

@@ -474,7 +474,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!finished || eng.state != PROTO_IDLE) {
         FAIL("hang: run of job %u not finished after %d polls with a good host (state %d, "
              "acked %u next %u end %u)",
-             j, polls, eng.state, (unsigned)eng.acked, (unsigned)eng.next, (unsigned)eng.end);
+             j, polls, eng.state, (unsigned)eng.run.acked, (unsigned)eng.run.next, (unsigned)eng.run.end);
     }
     finished = 0;
     in_frames = 0;

@@ -71,7 +71,7 @@ int test_proto_info(void)
              "[VER:canalpath %s proto %d]\n[OPT:real=%s,line=%d,tx=%d,steps=%d,sub=%d,lines=%d,"
              "link=%d,window=%d,models=CANAL%s%s%s]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
-             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)PROTO_WINDOW,
+             CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)OUT_FRAMES_WINDOW,
              PATH_HAVE_GSR ? "+GSR" : "", PATH_HAVE_CHANNEL ? "+CHANNEL" : "",
              PATH_HAVE_DRC ? "+DRC" : "");
     i = strlen(want);
@@ -96,5 +96,117 @@ int test_proto_info(void)
     hal_mem_feed_str(&m, "$I\n");
     CHECK_EQ_INT(proto_poll(&p), CP_ERR_IO);
     CHECK_EQ_INT(proto_poll(&p), CP_ERR_IO);
+    return 0;
+}
+
+/* Feed a host frame (seq, type) to the FRAMES decoder; returns what take asks for, or
+ * -1 if the decoder did not complete it. */
+static int host_frame(struct out_frames *f, struct out_run *run, uint8_t seq, uint8_t type,
+                      uint32_t now)
+{
+    uint8_t b[FRAME_MIN];
+    int i, n = frame_encode(seq, type, NULL, 0u, b, sizeof b), done = 0;
+    for (i = 0; i < n; i++) {
+        done = out_frames_rx(f, b[i]);
+    }
+    return done ? (int)out_frames_take(f, run, now) : -1;
+}
+
+/* The output modules on their own, without the engine: the machine's answers, the
+ * FRAMES window's ACK/NAK arithmetic and the late-frame tail. */
+int test_out_modules(void)
+{
+    static const struct {
+        const char *line;
+        enum out_gcode_answer kind;
+        size_t arg;
+    } ans[] = {
+        {"ok", OUT_GCODE_OK, 2u},          {"okay", OUT_GCODE_NOT_ANSWER, 0u},
+        {"error:5", OUT_GCODE_ERROR, 6u},  {"ALARM:1", OUT_GCODE_ALARM, 6u},
+        {"Error:x", OUT_GCODE_MARLIN_ERR, 6u}, {"rs 12", OUT_GCODE_RS, 3u},
+        {"Resend: 7", OUT_GCODE_RESEND, 7u}, {"o", OUT_GCODE_NOT_ANSWER, 0u},
+        {"", OUT_GCODE_NOT_ANSWER, 0u},    {"Resend", OUT_GCODE_NOT_ANSWER, 0u},
+    };
+    static struct job job;
+    struct out_gcode g;
+    struct out_frames f;
+    struct out_frames_tail t;
+    struct out_run run;
+    uint8_t late[FRAME_MIN];
+    size_t i, arg;
+    int n;
+    for (i = 0; i < sizeof ans / sizeof ans[0]; i++) {
+        CHECK_EQ_INT(out_gcode_answer_kind(ans[i].line, strlen(ans[i].line), &arg), ans[i].kind);
+        CHECK_EQ_INT(arg, ans[i].arg);
+    }
+    /* with checksums: an error waits for its Resend, a Resend of a line sent rewinds
+     * (oks are then ignored until the resync), one never sent stops the run */
+    job_init(&job);
+    job.checksum = 1;
+    memset(&g, 0, sizeof g);
+    memset(&run, 0, sizeof run);
+    g.ring_n = 2;
+    g.inflight = 40;
+    g.ring[0] = 20;
+    g.ring[1] = 20;
+    run.next = 5;
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ERROR, "", 0u, 10u), OUT_GOING);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_RESEND, " 3", 2u, 11u), OUT_GOING);
+    CHECK(run.next == 3u && g.resync == 1u && run.t_last == 11u);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_OK, "", 0u, 12u), OUT_GOING);
+    CHECK(g.ring_n == 2u && run.acked == 0u);
+    g.resync = 0;
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_OK, "", 0u, 13u), OUT_GOING);
+    CHECK(g.ring_n == 1u && g.inflight == 20u && run.acked == 1u);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_RS, "3", 1u, 14u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ALARM, "", 0u, 15u), CP_ST_PEER_ERROR);
+    job.checksum = 0;
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ERROR, "", 0u, 16u), CP_ST_PEER_ERROR);
+
+    /* FRAMES: a cumulative ACK moves acked, an ACK beyond next is ignored, a NAK rewinds */
+    memset(&f, 0, sizeof f);
+    memset(&run, 0, sizeof run);
+    frame_rx_init(&f.rx);
+    run.next = 5;
+    run.end = 10;
+    f.retries = 3;
+    CHECK_EQ_INT(host_frame(&f, &run, 3u, FRAME_ACK, 100u), OUT_FRAMES_NONE);
+    CHECK(run.acked == 3u && run.t_last == 100u && f.retries == 0u);
+    CHECK_EQ_INT(host_frame(&f, &run, 9u, FRAME_ACK, 101u), OUT_FRAMES_NONE);
+    CHECK(run.acked == 3u && run.t_last == 100u);
+    CHECK_EQ_INT(host_frame(&f, &run, 4u, FRAME_NAK, 102u), OUT_FRAMES_NONE);
+    CHECK(run.acked == 4u && run.next == 4u && run.t_last == 102u);
+    CHECK_EQ_INT(host_frame(&f, &run, 0u, FRAME_HOLD, 103u), OUT_FRAMES_HOLD);
+    CHECK_EQ_INT(host_frame(&f, &run, 0u, FRAME_GO, 104u), OUT_FRAMES_GO);
+    CHECK(run.t_last == 104u);
+    CHECK_EQ_INT(host_frame(&f, &run, 0u, FRAME_ABORT, 105u), OUT_FRAMES_ABORT);
+
+    /* the tail: text passes, a late ACK is dropped whole, a 0x06 prefix that fails its
+     * type check or stalls is replayed byte for byte */
+    memset(&t, 0, sizeof t);
+    t.open = 1;
+    CHECK_EQ_INT(out_frames_tail_take(&t, 'A'), OUT_FRAMES_TAIL_TEXT);
+    n = frame_encode(7u, FRAME_ACK, NULL, 0u, late, sizeof late);
+    CHECK_EQ_INT(n, FRAME_MIN);
+    CHECK_EQ_INT(out_frames_tail_take(&t, late[0]), OUT_FRAMES_TAIL_STARTED);
+    for (i = 1; i < FRAME_MIN; i++) {
+        CHECK_EQ_INT(out_frames_tail_take(&t, late[i]), OUT_FRAMES_TAIL_HELD);
+    }
+    CHECK(t.len == 0u && t.replay == 0u);
+    CHECK_EQ_INT(out_frames_tail_take(&t, FRAME_MIN), OUT_FRAMES_TAIL_STARTED);
+    CHECK_EQ_INT(out_frames_tail_take(&t, 0u), OUT_FRAMES_TAIL_HELD);
+    CHECK_EQ_INT(out_frames_tail_take(&t, FRAME_POINT), OUT_FRAMES_TAIL_HELD);
+    CHECK(t.replay == 3u && !out_frames_tail_waiting(&t));
+    CHECK_EQ_INT(out_frames_tail_next(&t), FRAME_MIN);
+    CHECK_EQ_INT(out_frames_tail_next(&t), 0);
+    CHECK_EQ_INT(out_frames_tail_next(&t), FRAME_POINT);
+    CHECK(t.len == 0u && t.replay == 0u);
+    CHECK_EQ_INT(out_frames_tail_take(&t, FRAME_MIN), OUT_FRAMES_TAIL_STARTED);
+    out_frames_tail_started(&t, 200u);
+    CHECK(out_frames_tail_waiting(&t));
+    out_frames_tail_stalled(&t, 200u + OUT_FRAMES_TAIL_MS - 1u);
+    CHECK(t.replay == 0u);
+    out_frames_tail_stalled(&t, 200u + OUT_FRAMES_TAIL_MS);
+    CHECK(t.replay == 1u);
     return 0;
 }

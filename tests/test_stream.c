@@ -221,7 +221,7 @@ static int machine_gcode(int rxbuf, int lag, uint32_t first, uint32_t *points, i
             }
             pend--;
         }
-        if (pend > 0 && rig.p.next >= rig.p.end) {
+        if (pend > 0 && rig.p.run.next >= rig.p.run.end) {
             while (pend > 0) {
                 host_send("ok\n");
                 inbuf -= (int)pend_len[--pend];
@@ -492,7 +492,7 @@ static int frames_run(void)
     rig.m.out_len = rig.scan = 0;
     CHECK(next_line(l, sizeof l, 2000));
     CHECK(strcmp(l, "ok") == 0);
-    CHECK(rig.p.frames_tail);
+    CHECK(rig.p.tail.open);
     return 0;
 }
 
@@ -532,7 +532,7 @@ int test_stream_frames_tail_noise(void)
     }
     CHECK_EQ_INT(ver, 2); /* $I and HELLO both answered */
     CHECK_EQ_INT(oks, 2);
-    CHECK(rig.p.frames_tail); /* neither ends the tail: late frames may still come */
+    CHECK(rig.p.tail.open); /* neither ends the tail: late frames may still come */
     /* a frame with a bad CRC is noise too (its bytes join the next line) */
     n = frame_encode((uint8_t)' ', FRAME_NAK, NULL, 0, ack, sizeof ack);
     ack[3] ^= 1u;
@@ -540,9 +540,9 @@ int test_stream_frames_tail_noise(void)
     host_send("\n");
     CHECK(next_line(l, sizeof l, 200));
     CHECK(strncmp(l, "error:8 ", 8) == 0);
-    /* a stalled prefix (0x06 then '\n', nothing more) is replayed after PROTO_TAIL_MS */
+    /* a stalled prefix (0x06 then '\n', nothing more) is replayed after OUT_FRAMES_TAIL_MS */
     hal_mem_feed(&rig.m, noise, 2);
-    CHECK(next_line(l, sizeof l, 2 * (int)PROTO_TAIL_MS));
+    CHECK(next_line(l, sizeof l, 2 * (int)OUT_FRAMES_TAIL_MS));
     CHECK(strncmp(l, "error:8 ", 8) == 0);
     /* a valid late frame is still dropped whole, even split across polls */
     n = frame_encode((uint8_t)'\n', FRAME_NAK, NULL, 0, ack, sizeof ack);
@@ -550,10 +550,10 @@ int test_stream_frames_tail_noise(void)
         hal_mem_feed(&rig.m, ack + i, 1);
         (void)proto_poll(&rig.p);
     }
-    CHECK(rig.p.frames_tail);
+    CHECK(rig.p.tail.open);
     CHECK(expect_code("FORMAT GCODE", 0));
     CHECK(!next_line(l, sizeof l, 50));
-    CHECK(!rig.p.frames_tail);
+    CHECK(!rig.p.tail.open);
     /* once a text command ran, 0x06 is plain noise at once */
     hal_mem_feed(&rig.m, noise, 2);
     CHECK(next_line(l, sizeof l, 5));
@@ -624,7 +624,7 @@ int test_stream_surface(void)
 
 /* A machine that never answers during a GCODE run: the firmware sends what fits its
  * RX buffer, then stops with error:22 once nothing was acknowledged for
- * PROTO_PEER_TIMEOUT_MS, and answers commands again. */
+ * OUT_GCODE_PEER_TIMEOUT_MS, and answers commands again. */
 int test_stream_silent_machine(void)
 {
     char l[160];
@@ -652,7 +652,7 @@ int test_stream_silent_machine(void)
     CHECK(g1 > 0);
     CHECK(bytes <= 128u); /* never more than the machine's RX buffer unacknowledged */
     CHECK(rig.p.state == PROTO_IDLE);
-    CHECK(rig.m.now >= PROTO_PEER_TIMEOUT_MS);
+    CHECK(rig.m.now >= OUT_GCODE_PEER_TIMEOUT_MS);
     printf("  note: silent machine: %d lines (%u bytes) in flight, error:22 at %u ms\n", g1,
            (unsigned)bytes, (unsigned)rig.m.now);
     CHECK(expect_code("$I", 0));
