@@ -201,65 +201,6 @@ static int job_numbers(const char *line, const uint16_t *st, const uint16_t *ln,
     return CP_ST_OK;
 }
 
-int job_status_of(int err)
-{
-    switch (err) {
-    case CP_OK:
-        return CP_ST_OK;
-    case CP_ERR_NONFINITE:
-        return CP_ST_NONFINITE;
-    case CP_ERR_RANGE:
-    case CP_ERR_INVAL:
-        return CP_ST_OUT_OF_RANGE;
-    case CP_ERR_RADIUS:
-        return CP_ST_RADIUS;
-    case CP_ERR_DEGENERATE:
-        return CP_ST_DEGENERATE;
-    case CP_ERR_EMPTY:
-        return CP_ST_EMPTY;
-    case CP_ERR_TOO_MANY:
-        return CP_ST_TOO_MANY;
-    case CP_ERR_TOOL:
-        return CP_ST_TOOL;
-    case CP_ERR_CUSP:
-        return CP_ST_CUSP;
-    case CP_ERR_TOL:
-        return CP_ST_TOL;
-    case CP_ERR_OFF_PLANE:
-        return CP_ST_OFF_PLANE;
-    case CP_ERR_FRENET:
-        return CP_ST_FRENET;
-    case CP_ERR_FRAME_REF:
-        return CP_ST_FRAME_REF;
-    case CP_ERR_SECTION:
-        return CP_ST_SECTION;
-    case CP_ERR_FT_RANGE:
-        return CP_ST_FT_RANGE;
-    case CP_ERR_FOLD:
-        return CP_ST_FOLD;
-    case CP_ERR_TOO_FEW:
-        return CP_ST_TOO_FEW;
-    case CP_ERR_EXPONENT:
-        return CP_ST_EXPONENT;
-    case CP_ERR_COINCIDENT:
-        return CP_ST_COINCIDENT;
-    case CP_ERR_SECTION_PLANE:
-        return CP_ST_SECTION_PLANE;
-    case CP_ERR_AREA_LAW:
-        return CP_ST_AREA_LAW;
-    case CP_ERR_ISOTROPIC:
-        return CP_ST_ISOTROPIC;
-    case CP_ERR_TURN:
-        return CP_ST_TURN;
-    case CP_ERR_TWIST:
-        return CP_ST_TWIST;
-    case CP_ERR_BUFFER:
-        return CP_ST_BUFFER;
-    default:
-        return CP_ST_NUMERIC;
-    }
-}
-
 /* The canal's commands and SURFACE, their arguments checked (job_command). */
 static int canal_command(struct job *j, unsigned c, const struct job_args *a)
 {

@@ -129,7 +129,4 @@ int job_is_command(const char *line, size_t len);
  * CP_WITH_*), "+GSR", "+CHANNEL", "+DRC" in that order, e.g. "CANAL+GSR". */
 const char *job_models(void);
 
-/* Wire status of an enum cp_err returned by toolpath_init. */
-int job_status_of(int cp_err);
-
 #endif /* JOB_H */

@@ -60,7 +60,7 @@ int job_channel_command(struct job *j, struct job_args *a)
     }
     st = channel_section_check(&s);
     if (st != CP_OK) {
-        return job_status_of(st);
+        return cp_status_of(st);
     }
     if (c == 0u) {
         g->count++;

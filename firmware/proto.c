@@ -16,16 +16,16 @@
 /* The texts of cp_status.def packed in code order, each ended by its NUL (no pointer
  * table). The rows must number 0, 1, 2, ... in order: checked row by row below. */
 enum cp_status_row {
-#define CP_STATUS(name, num, text) CP_STATUS_ROW_##name,
+#define CP_STATUS(name, num, text, from) CP_STATUS_ROW_##name,
 #include "cp_status.def"
 #undef CP_STATUS
     CP_STATUS_ROWS
 };
-#define CP_STATUS(name, num, text) CP_STATIC_ASSERT(CP_STATUS_ROW_##name == (num), row_##name);
+#define CP_STATUS(name, num, text, from) CP_STATIC_ASSERT(CP_STATUS_ROW_##name == (num), row_##name);
 #include "cp_status.def"
 #undef CP_STATUS
 static const char status_texts[] =
-#define CP_STATUS(name, num, text) text "\0"
+#define CP_STATUS(name, num, text, from) text "\0"
 #include "cp_status.def"
 #undef CP_STATUS
     ;
@@ -205,7 +205,7 @@ static int run_start(struct proto *p, uint32_t first)
     }
     err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
     if (err != CP_OK) {
-        return job_status_of(err);
+        return cp_status_of(err);
     }
     v[0] = path_count(&p->path);
     if (first >= v[0]) {
