@@ -1,76 +1,78 @@
-/* path.c - dispatch to the model iterators (path.h).
+/* path.c - dispatch to the model iterators (path.h), one case per row of models.def.
  * SPDX-License-Identifier: MIT
+ *
+ * Direct calls, no function pointers: the static stack analysis (tools/stack.sh) sees
+ * every edge. A model that is not compiled in has no case (PATH_IF): the default answers.
  */
 #include "path.h"
+
+/* ---- The canal row's adapters, until the raster rename (path.h) ----
+ * toolpath_* under the models' names, the init with the models' signature (the canal's
+ * surface is still raster->surf: its `surf` argument, the union's unused canal member,
+ * is ignored). The rename turns these into redefinitions of canal_path_*: delete them. */
+static CP_ALWAYS_INLINE int canal_path_init(struct canal_path *it, const struct canal_cfg *surf,
+                                  const struct toolpath_cfg *raster)
+{
+    (void)surf;
+    return toolpath_init(it, raster);
+}
+static CP_ALWAYS_INLINE uint32_t canal_path_count(const struct canal_path *it)
+{
+    return toolpath_count(it);
+}
+static CP_ALWAYS_INLINE int canal_path_next(struct canal_path *it, struct toolpath_pt *pt)
+{
+    return toolpath_next(it, pt);
+}
+static CP_ALWAYS_INLINE int canal_path_seek(struct canal_path *it, uint32_t k)
+{
+    return toolpath_seek(it, k);
+}
+
+int path_has(unsigned kind)
+{
+    switch (kind) {
+#define CP_MODEL(NAME, name, WITH, WORD) \
+    case PATH_##NAME:                    \
+        return WITH;
+#include "models.def"
+#undef CP_MODEL
+    default:
+        return 0;
+    }
+}
+
+/* The model's init (on error its count is 0), then the stream header. */
+#define PATH_INIT_ROW(name)                                               \
+    err = name##_path_init(&p->u.name, &geom->name, raster);              \
+    if (err != CP_OK) {                                                   \
+        p->u.name.count = 0;                                              \
+        return err;                                                       \
+    }                                                                     \
+    p->info.count = name##_path_count(&p->u.name);                        \
+    p->info.n = p->u.name.n;                                              \
+    p->info.steps = p->u.name.steps;                                      \
+    p->info.link = p->u.name.link;                                        \
+    p->info.mode = p->u.name.mode;                                        \
+    return CP_OK;
 
 int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
               const union path_geom *geom)
 {
     int err;
-    (void)geom;
     p->kind = kind;
     p->info.count = 0;
     p->info.n = 0;
     p->info.steps = 0;
     p->info.link = 0;
     p->info.mode = 0;
-    if (raster == NULL || (kind != PATH_CANAL && geom == NULL)) {
+    if (raster == NULL || geom == NULL) {
         return CP_ERR_INVAL;
     }
-    /* the model's init (on error its count is 0), then the stream header */
     switch (kind) {
-    case PATH_CANAL:
-        err = toolpath_init(&p->u.canal, raster);
-        if (err != CP_OK) {
-            p->u.canal.count = 0;
-            return err;
-        }
-        p->info.count = toolpath_count(&p->u.canal);
-        p->info.n = p->u.canal.n;
-        p->info.steps = p->u.canal.steps;
-        p->info.link = p->u.canal.link;
-        p->info.mode = p->u.canal.mode;
-        return CP_OK;
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        err = channel_path_init(&p->u.channel, &geom->channel, raster);
-        if (err != CP_OK) {
-            p->u.channel.count = 0;
-            return err;
-        }
-        p->info.count = channel_path_count(&p->u.channel);
-        p->info.n = p->u.channel.n;
-        p->info.steps = p->u.channel.steps;
-        p->info.link = p->u.channel.link;
-        p->info.mode = p->u.channel.mode;
-        return CP_OK;
-#endif
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        err = gsr_path_init(&p->u.gsr, &geom->gsr, raster);
-        if (err != CP_OK) {
-            return err; /* count is 0 */
-        }
-        p->info.count = gsr_path_count(&p->u.gsr);
-        p->info.n = p->u.gsr.n;
-        p->info.steps = p->u.gsr.steps;
-        p->info.link = p->u.gsr.link;
-        p->info.mode = p->u.gsr.mode;
-        return CP_OK;
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        err = drc_path_init(&p->u.drc, &geom->drc, raster);
-        if (err != CP_OK) {
-            return err; /* count is 0 */
-        }
-        p->info.count = drc_path_count(&p->u.drc);
-        p->info.n = p->u.drc.n;
-        p->info.steps = p->u.drc.steps;
-        p->info.link = p->u.drc.link;
-        p->info.mode = p->u.drc.mode;
-        return CP_OK;
-#endif
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : PATH_INIT_ROW(name))
+#include "models.def"
+#undef CP_MODEL
     default:
         return CP_ERR_INVAL;
     }
@@ -84,20 +86,9 @@ uint32_t path_count(const struct path *p)
 uint32_t path_pos(const struct path *p)
 {
     switch (p->kind) {
-    case PATH_CANAL:
-        return p->u.canal.k;
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        return p->u.channel.k;
-#endif
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        return p->u.gsr.k;
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        return p->u.drc.k;
-#endif
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : return p->u.name.k;)
+#include "models.def"
+#undef CP_MODEL
     default:
         return 0;
     }
@@ -109,20 +100,10 @@ int path_next(struct path *p, struct toolpath_pt *pt)
         return CP_ERR_DONE;
     }
     switch (p->kind) {
-    case PATH_CANAL:
-        return toolpath_next(&p->u.canal, pt);
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        return channel_path_next(&p->u.channel, pt);
-#endif
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        return gsr_path_next(&p->u.gsr, pt);
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        return drc_path_next(&p->u.drc, pt);
-#endif
+#define CP_MODEL(NAME, name, WITH, WORD) \
+    PATH_IF(WITH, case PATH_##NAME : return name##_path_next(&p->u.name, pt);)
+#include "models.def"
+#undef CP_MODEL
     default:
         return CP_ERR_DONE;
     }
@@ -134,20 +115,10 @@ int path_seek(struct path *p, uint32_t k)
         return CP_ERR_RANGE;
     }
     switch (p->kind) {
-    case PATH_CANAL:
-        return toolpath_seek(&p->u.canal, k);
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        return channel_path_seek(&p->u.channel, k);
-#endif
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        return gsr_path_seek(&p->u.gsr, k);
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        return drc_path_seek(&p->u.drc, k);
-#endif
+#define CP_MODEL(NAME, name, WITH, WORD) \
+    PATH_IF(WITH, case PATH_##NAME : return name##_path_seek(&p->u.name, k);)
+#include "models.def"
+#undef CP_MODEL
     default:
         return CP_ERR_RANGE;
     }
