@@ -11,14 +11,16 @@
  *   FRAME FIXED|FRENET | FRAME N0|RMF x y z
  *   FORM RATIONAL|TRIG               section points (default RATIONAL)
  * Arity error:3, numbers error:4/5, keyword error:9 (job.c checks these: the keywords,
- * words and number counts are in its table), range error:6 (|a_i|, |b|, |c|, |x|, ref
+ * words and number counts are rows of commands.def), range error:6 (|a_i|, |b|, |c|, |x|, ref
  * <= 1e4 mm, |w| <= 23040 deg, ref != 0). The geometry itself is checked by RUN.
  */
 #include "job.h"
 
-/* cfg.set bits: Bezier points 0..3, radii N and B */
+/* cfg.set bits: Bezier points 0..3 (CENTER P<i>: 1 << i), radii N and B */
 #define SET_BEZIER 0x0Fu
-#define SET_RADII 0x30u
+#define SET_RADII_N 0x10u
+#define SET_RADII_B 0x20u
+#define SET_RADII (SET_RADII_N | SET_RADII_B)
 
 /* Zero the 3 functions m[0..2]. */
 static void zero3(cp_real (*m)[GSR_FN])
@@ -42,11 +44,27 @@ void job_gsr_defaults(union path_geom *g)
     c->set = 0;
 }
 
+int job_gsr_ready(const struct job *j)
+{
+    const uint16_t need =
+        JOB_HAVE_GSR_CENTER | JOB_HAVE_GSR_RADII | JOB_HAVE_GSR_FRAME | JOB_HAVE_RASTER;
+    return (j->have & need) == need;
+}
+
+/* CENTER X|Y|Z (a coordinate function) or P0..P3 (a control point of the Bezier form). */
+static unsigned center_form(enum job_word w)
+{
+    return w == JOB_WORD_CENTER_P0 || w == JOB_WORD_CENTER_P1 || w == JOB_WORD_CENTER_P2 ||
+                   w == JOB_WORD_CENTER_P3
+               ? GSR_CENTRE_BEZIER
+               : GSR_CENTRE_POLY;
+}
+
 int job_gsr_command(struct job *j, struct job_args *a)
 {
     struct gsr_cfg *c;
     cp_real *v = a->v;
-    unsigned cmd = a->cmd, k = a->sub, na = a->na, i, bz, bit, mask, have;
+    unsigned k = a->value, na = a->na, i, form, bit, mask, have;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
             return CP_ST_OUT_OF_RANGE;
@@ -56,34 +74,40 @@ int job_gsr_command(struct job *j, struct job_args *a)
         v[GSR_W] *= CP_DEG2RAD;
     }
     c = &j->geom.gsr;
-    bz = k >= 3u;
     bit = 0u;  /* c->set bit of this command */
     mask = 0u; /* c->set bits that complete the part */
     have = 0u; /* its j->have bit, once complete */
-    switch (cmd) {
-    case 0u:                  /* CENTER */
-        if (bz != c->centre) { /* the other form: start afresh */
+    switch (a->cmd) {
+    case GSR_CMD_CENTER: /* k: the axis (X|Y|Z) or the control point (P<k>) */
+        form = center_form(a->word);
+        if (form != c->centre) { /* the other form: start afresh */
             zero3(c->c);
-            c->centre = (uint8_t)bz;
+            c->centre = (uint8_t)form;
             c->set &= (uint8_t)~SET_BEZIER;
             j->have &= (uint16_t)~JOB_HAVE_GSR_CENTER;
         }
         for (i = 0; i < na; i++) {
-            c->c[bz ? i : k][bz ? k - 3u : i] = v[i];
+            if (form == GSR_CENTRE_BEZIER) {
+                c->c[i][k] = v[i]; /* coordinate i of point k */
+            } else {
+                c->c[k][i] = v[i]; /* number i of axis k */
+            }
         }
-        bit = bz << (k & 3u); /* P0..P3 (k = 3..6): one bit each, all four needed */
-        mask = bz ? SET_BEZIER : 0u;
+        bit = form == GSR_CENTRE_BEZIER ? 1u << k : 0u; /* all four points needed */
+        mask = form == GSR_CENTRE_BEZIER ? SET_BEZIER : 0u;
         have = JOB_HAVE_GSR_CENTER;
         break;
-    case 1u: /* RADII */
+    case GSR_CMD_RADII: /* k: f_N, f_B, f_t */
         for (i = 0; i < GSR_FN; i++) {
             c->r[k][i] = v[i];
         }
-        bit = (0x10u << k) & SET_RADII; /* N and B needed */
+        bit = a->word == JOB_WORD_RADII_N   ? SET_RADII_N
+              : a->word == JOB_WORD_RADII_B ? SET_RADII_B
+                                            : 0u; /* f_t has a default */
         mask = SET_RADII;
         have = JOB_HAVE_GSR_RADII;
         break;
-    case 2u: /* FRAME */
+    case GSR_CMD_FRAME: /* k: enum gsr_frame_kind; N0 and RMF with their reference */
         if (na != 0u) {
             if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > CP_R(0.0))) {
                 return CP_ST_OUT_OF_RANGE;
@@ -95,9 +119,11 @@ int job_gsr_command(struct job *j, struct job_args *a)
         c->frame = (uint8_t)k;
         have = JOB_HAVE_GSR_FRAME;
         break;
-    default: /* FORM */
+    case GSR_CMD_FORM: /* k: enum gsr_section_kind */
         c->section = (uint8_t)k;
         break;
+    default: /* not GSR's (unreachable: job.c calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
     }
     c->set |= (uint8_t)bit;
     if ((c->set & mask) == mask) {

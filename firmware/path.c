@@ -11,7 +11,7 @@
  * surface is still raster->surf: its `surf` argument, the union's unused canal member,
  * is ignored). The rename turns these into redefinitions of canal_path_*: delete them. */
 static CP_ALWAYS_INLINE int canal_path_init(struct canal_path *it, const struct canal_cfg *surf,
-                                  const struct toolpath_cfg *raster)
+                                            const struct toolpath_cfg *raster)
 {
     (void)surf;
     return toolpath_init(it, raster);
@@ -32,8 +32,8 @@ static CP_ALWAYS_INLINE int canal_path_seek(struct canal_path *it, uint32_t k)
 int path_has(unsigned kind)
 {
     switch (kind) {
-#define CP_MODEL(NAME, name, WITH, WORD) \
-    case PATH_##NAME:                    \
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    case PATH_##NAME:                                                                              \
         return WITH;
 #include "models.def"
 #undef CP_MODEL
@@ -43,17 +43,17 @@ int path_has(unsigned kind)
 }
 
 /* The model's init (on error its count is 0), then the stream header. */
-#define PATH_INIT_ROW(name)                                               \
-    err = name##_path_init(&p->u.name, &geom->name, raster);              \
-    if (err != CP_OK) {                                                   \
-        p->u.name.count = 0;                                              \
-        return err;                                                       \
-    }                                                                     \
-    p->info.count = name##_path_count(&p->u.name);                        \
-    p->info.n = p->u.name.n;                                              \
-    p->info.steps = p->u.name.steps;                                      \
-    p->info.link = p->u.name.link;                                        \
-    p->info.mode = p->u.name.mode;                                        \
+#define PATH_INIT_ROW(name)                                                                        \
+    err = name##_path_init(&p->u.name, &geom->name, raster);                                       \
+    if (err != CP_OK) {                                                                            \
+        p->u.name.count = 0;                                                                       \
+        return err;                                                                                \
+    }                                                                                              \
+    p->info.count = name##_path_count(&p->u.name);                                                 \
+    p->info.n = p->u.name.n;                                                                       \
+    p->info.steps = p->u.name.steps;                                                               \
+    p->info.link = p->u.name.link;                                                                 \
+    p->info.mode = p->u.name.mode;                                                                 \
     return CP_OK;
 
 int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
@@ -100,7 +100,7 @@ int path_next(struct path *p, struct toolpath_pt *pt)
         return CP_ERR_DONE;
     }
     switch (p->kind) {
-#define CP_MODEL(NAME, name, WITH, WORD) \
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
     PATH_IF(WITH, case PATH_##NAME : return name##_path_next(&p->u.name, pt);)
 #include "models.def"
 #undef CP_MODEL
@@ -115,7 +115,7 @@ int path_seek(struct path *p, uint32_t k)
         return CP_ERR_RANGE;
     }
     switch (p->kind) {
-#define CP_MODEL(NAME, name, WITH, WORD) \
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
     PATH_IF(WITH, case PATH_##NAME : return name##_path_seek(&p->u.name, k);)
 #include "models.def"
 #undef CP_MODEL
