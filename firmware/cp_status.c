@@ -4,7 +4,7 @@
 #include "cp_types.h"
 #include "cp_status.h"
 
-/* FROM of a row that no enum cp_err maps to (every cp_err is <= 0) */
+/* FROM of a row that no enum cp_err maps to (never matched: every cp_err is <= 0) */
 #define WIRE_ONLY 1
 
 /* The FROM column, indexed by code (the codes are 0, 1, 2, ...: proto.c checks it). */
@@ -21,7 +21,7 @@ int cp_status_of(int err)
         err = CP_ERR_RANGE;
     }
     for (code = 0; code < (unsigned)CP_ST_END_; code++) {
-        if (status_from[code] == err) {
+        if (status_from[code] != WIRE_ONLY && status_from[code] == err) {
             return (int)code;
         }
     }

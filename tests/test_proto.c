@@ -42,6 +42,54 @@ static void pump(struct proto *p)
     }
 }
 
+/* cp_status_of: the FROM column of cp_status.def, CP_ERR_INVAL as OUT_OF_RANGE and the
+ * codes no row names as NUMERIC (the mapping job_status_of had, case by case). */
+int test_status_of(void)
+{
+    static const struct {
+        int err, st;
+    } map[] = {
+        {CP_OK, CP_ST_OK},
+        {CP_ERR_INVAL, CP_ST_OUT_OF_RANGE},
+        {CP_ERR_NONFINITE, CP_ST_NONFINITE},
+        {CP_ERR_RANGE, CP_ST_OUT_OF_RANGE},
+        {CP_ERR_RADIUS, CP_ST_RADIUS},
+        {CP_ERR_DEGENERATE, CP_ST_DEGENERATE},
+        {CP_ERR_EMPTY, CP_ST_EMPTY},
+        {CP_ERR_TOO_MANY, CP_ST_TOO_MANY},
+        {CP_ERR_TOOL, CP_ST_TOOL},
+        {CP_ERR_CUSP, CP_ST_CUSP},
+        {CP_ERR_NUMERIC, CP_ST_NUMERIC},
+        {CP_ERR_TOL, CP_ST_TOL},
+        {CP_ERR_IO, CP_ST_NUMERIC},
+        {CP_ERR_FULL, CP_ST_NUMERIC},
+        {CP_ERR_STATE, CP_ST_NUMERIC},
+        {CP_ERR_DONE, CP_ST_NUMERIC},
+        {CP_ERR_OFF_PLANE, CP_ST_OFF_PLANE},
+        {CP_ERR_FRENET, CP_ST_FRENET},
+        {CP_ERR_FRAME_REF, CP_ST_FRAME_REF},
+        {CP_ERR_SECTION, CP_ST_SECTION},
+        {CP_ERR_FT_RANGE, CP_ST_FT_RANGE},
+        {CP_ERR_FOLD, CP_ST_FOLD},
+        {CP_ERR_TOO_FEW, CP_ST_TOO_FEW},
+        {CP_ERR_EXPONENT, CP_ST_EXPONENT},
+        {CP_ERR_COINCIDENT, CP_ST_COINCIDENT},
+        {CP_ERR_SECTION_PLANE, CP_ST_SECTION_PLANE},
+        {CP_ERR_AREA_LAW, CP_ST_AREA_LAW},
+        {CP_ERR_ISOTROPIC, CP_ST_ISOTROPIC},
+        {CP_ERR_TURN, CP_ST_TURN},
+        {CP_ERR_TWIST, CP_ST_TWIST},
+        {CP_ERR_BUFFER, CP_ST_BUFFER},
+        {-31, CP_ST_NUMERIC}, /* not (yet) an enum cp_err */
+        {1, CP_ST_NUMERIC},   /* WIRE_ONLY's value is no cp_err */
+    };
+    unsigned i;
+    for (i = 0; i < sizeof map / sizeof map[0]; i++) {
+        CHECK_EQ_INT(cp_status_of(map[i].err), map[i].st);
+    }
+    return 0;
+}
+
 int test_proto_info(void)
 {
     static struct hal_mem m;
