@@ -45,11 +45,11 @@ struct job_word_row {
 
 CP_STATIC_ASSERT(JOB_CMDS <= 255 && JOB_BAD_WORD <= 255, ids_fit_a_byte);
 /* every keyword and word shorter than PARSE_KW_MAX, every VALUE a byte */
-#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE) \
+#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE)                                     \
     CP_STATIC_ASSERT(sizeof(KEYWORD) <= PARSE_KW_MAX, kw_##OWNER##_##NAME);
-#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE) \
+#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE)                                               \
     CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, word_##WORD);
-#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE) \
+#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE)                                                      \
     CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, option_##WORD);
 #include "commands.def"
 #undef CP_CMD

@@ -137,7 +137,8 @@ int test_proto_info(void)
     hal_mem_feed(&m, "$\x01I\n$i\n", 7);
     pump(&p);
     CHECK(m.out_len > 40);
-    CHECK(memcmp(m.out, "error:2 line too long\nerror:8 invalid character in line\n[VER:", 60) == 0);
+    CHECK(memcmp(m.out, "error:2 line too long\nerror:8 invalid character in line\n[VER:", 60) ==
+          0);
 
     /* hang-up is reported and sticky */
     hal_mem_hangup(&m);
