@@ -1,21 +1,25 @@
 /* job.h - the fillet job assembled from protocol commands (docs/PROTOCOL.md).
  * SPDX-License-Identifier: MIT
  *
- * Commands (case-insensitive keywords; numbers in mm, angles in degrees):
- *   CURVE LINE x0 y0 x1 y1 | CURVE ARC cx cy r a0 a1 | CURVE ELLIPSE cx cy A B a0 a1
- *   CURVE BEZIER x0 y0 x1 y1 x2 y2 x3 y3
- *   RADIUS CONST c | RADIUS LINEAR r0 r1 | RADIUS COS b c k | RADIUS CUBIC r0 r1 r2 r3
- *   TOOL BALL r [TIP|CENTRE] | TOOL NONE
- *   LINES n u0 u1             family-2 lines, start angles u0..u1 (deg, |u| <= 180) on the first
- * circle CIRCLES n u0 u1 [PATCH]   family-1 arcs at n evenly spaced t over contact angles u0..u1
- *                             (PATCH: between the family-2 lines that start at u0 and u1)
- *   STEPS m | TOL chord_um    fixed steps per line, or a chord tolerance (default TOL 1)
- *   FEED f                    mm/min on every G1 (0 = no F word)
+ * Commands (case-insensitive keywords; numbers in mm, angles in degrees; the full list,
+ * with the models' own commands, is firmware/commands.def):
+ *   CURVE LINE x0 y0 x1 y1 | ARC cx cy r a0 a1 | ELLIPSE cx cy A B a0 a1
+ *         | BEZIER x0 y0 x1 y1 x2 y2 x3 y3
+ *   RADIUS CONST c | LINEAR r0 r1 | COS b c k | CUBIC r0 r1 r2 r3
+ *   TOOL BALL r [TIP|CENTRE|CENTER] | TOOL NONE
+ *   LINES n u0 u1            family-2 lines, start angles u0..u1 (|u| <= 180) on the
+ *                            first circle
+ *   CIRCLES n u0 u1 [PATCH]  family-1 arcs at n evenly spaced t over contact angles
+ *                            u0..u1 (PATCH: between the family-2 lines that start at u0, u1)
+ *   STEPS m | TOL chord_um   fixed steps per line, or a chord tolerance (default TOL 1)
+ *   FEED f                   mm/min on every G1 (0 = no F word)
  *   FORMAT GCODE | FRAMES
- *   RXBUF n                   the machine's RX buffer for character counting (32..1024, default
- * 128) CHECKSUM ON | OFF         Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
- *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL); a new
- *                             SURFACE starts that model's geometry afresh (path.h)
+ *   RXBUF n                  the machine's RX buffer for character counting
+ *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 96..1024, default 128)
+ *   CHECKSUM ON | OFF        Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
+ *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL; the words
+ *                            of models.def); a new SURFACE starts that model's geometry
+ *                            afresh (path.h)
  * Every command is a row of commands.def (its keyword, argument shape, words and
  * owner). Every command validates its arguments at once; the geometry is validated at
  * RUN (path_init), each failure with its own wire status (cp_status.def).
@@ -101,8 +105,9 @@ enum job_word {
 };
 
 /* How job_line checks a command's arguments, in this order: token count (error:3), words
- * (error:9), numbers (error:4/5, parse_real; the count: parse_uint), then the owner's
- * hook checks ranges (error:6, 14, ...). MIN, MAX: the CP_CMD row's columns. */
+ * (error:9), the count (parse_uint: error:4, above 2^32 - 1 error:6), the numbers
+ * (parse_real: error:4/5/6), then the owner's hook checks ranges (error:6, 14, ...).
+ * MIN, MAX: the CP_CMD row's columns. */
 enum job_shape {
     JOB_ARGS_NUMBERS,              /* MIN..MAX numbers (TOL, FEED, SECTION, AXES, POINT) */
     JOB_ARGS_WORD,                 /* exactly one word of the list: arity first, then the
@@ -114,8 +119,8 @@ enum job_shape {
                                       with an option word, which the hook checks after its
                                       ranges (JOB_BAD_WORD: error:9) (TOOL) */
     JOB_ARGS_COUNT_NUMBERS_OPTION, /* an unsigned count, MIN numbers, then, if the command
-                                     has options, an optional option word, checked before
-                                     everything else (error:9) (LINES, CIRCLES) */
+                                      has options, an optional option word, checked before
+                                      the arity and the numbers (error:9) (LINES, CIRCLES) */
     JOB_ARGS_COUNT_OR_WORD,        /* exactly one token: a word of the list, or an unsigned
                                       count (STEPS, RXBUF, RESUME, THICKEN) */
     JOB_ARGS_ALONE                 /* nothing after the keyword; with anything after it the
