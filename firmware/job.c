@@ -369,13 +369,12 @@ static int job_raster(struct job *j, const struct job_args *a)
 }
 
 /* SURFACE <model>: the model's geometry starts afresh (the union holds one model; the
- * canal's and the raster's settings stay) */
+ * canal's and the raster's settings and have bits stay) */
 static int job_surface(struct job *j, const struct job_args *a)
 {
     if (!path_has(a->value)) {
         return CP_ST_BAD_KEYWORD;
     }
-    j->have &= (uint16_t)JOB_HAVE_ALL;
     model_defaults(a->value, &j->geom);
     j->kind = (uint8_t)a->value;
     return CP_ST_OK;

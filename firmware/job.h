@@ -33,21 +33,13 @@
 
 enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 
-/* have bits: what the commands set, and what RUN needs (job_<m>_ready). The canal's and
- * the raster's (every model's, kept by SURFACE), then each model's own (cleared by
- * SURFACE, which starts a model's geometry afresh). */
-#define JOB_HAVE_CURVE 0x01u
-#define JOB_HAVE_RADIUS 0x02u
-#define JOB_HAVE_RASTER 0x04u
-#define JOB_HAVE_ALL 0x07u               /* what the canal needs; the bits SURFACE keeps */
-#define JOB_HAVE_GSR_MASK 0x0038u        /* 0x0008, 0x0010, 0x0020 */
-#define JOB_HAVE_CHANNEL_MASK 0x01C0u    /* 0x0040, 0x0080, 0x0100 */
-#define JOB_HAVE_DRC_MASK 0x0E00u        /* 0x0200, 0x0400, 0x0800 */
-#define JOB_HAVE_CHANNEL_SECTION 0x0040u /* SURFACE CHANNEL: at least one SECTION */
-#define JOB_HAVE_DRC_POINTS 0x0200u      /* SURFACE DRC: at least one POINT */
-#define JOB_HAVE_GSR_CENTER 0x0008u      /* SURFACE GSR: CENTER X|Y|Z, or all four CENTER P<i> */
-#define JOB_HAVE_GSR_RADII 0x0010u       /* SURFACE GSR: RADII N and RADII B */
-#define JOB_HAVE_GSR_FRAME 0x0020u       /* SURFACE GSR: FRAME */
+/* have bits: what the canal's and the raster's commands set (every model's, kept by
+ * SURFACE). A model's own progress is in its geometry (union path_geom), which SURFACE
+ * starts afresh; job_<m>_ready reads both. */
+#define JOB_HAVE_CURVE 0x01u  /* CURVE */
+#define JOB_HAVE_RADIUS 0x02u /* RADIUS */
+#define JOB_HAVE_RASTER 0x04u /* LINES or CIRCLES */
+#define JOB_HAVE_ALL 0x07u    /* what the canal needs */
 
 /* Most tokens of one command line (keyword included). */
 #define JOB_MAX_TOKENS 20u
@@ -143,38 +135,33 @@ struct job_args {
     cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
 };
 
-/* A model's hooks, one set per row of models.def (job_<name>.c), called directly from
- * job.c (no function pointers: the static stack analysis sees every edge):
- *   int  job_<m>_command(struct job *j, struct job_args *a)  a command of the model's
- *        (commands.def OWNER): apply it to the job (set its JOB_HAVE_* bits) and return
- *        a wire status; switch on a->cmd (<M>_CMD_*); a->v may serve as scratch
- *   void job_<m>_defaults(union path_geom *g)   SURFACE <m>: its geometry afresh
- *   int  job_<m>_ready(const struct job *j)     1 when the job has all RUN needs */
-
-/* the canal (job_canal.c): CURVE, RADIUS (under every SURFACE); SURFACE CANAL keeps
- * everything; ready with CURVE, RADIUS and LINES or CIRCLES. */
-int job_canal_command(struct job *j, struct job_args *a);
-void job_canal_defaults(union path_geom *g);
-int job_canal_ready(const struct job *j);
-
-/* SURFACE CHANNEL (job_channel.c): SECTION, AXES, SECTIONS CLEAR; defaults: no section;
- * ready with a SECTION and LINES or CIRCLES. */
-int job_channel_command(struct job *j, struct job_args *a);
-void job_channel_defaults(union path_geom *g);
-int job_channel_ready(const struct job *j);
-
-/* SURFACE GSR (job_gsr.c): CENTER, RADII, FRAME, FORM; defaults: centre 0, f_t(u) = u,
- * FRAME FIXED (not set), FORM RATIONAL; ready with CENTER, RADII N and B, FRAME and
- * LINES or CIRCLES. */
-int job_gsr_command(struct job *j, struct job_args *a);
-void job_gsr_defaults(union path_geom *g);
-int job_gsr_ready(const struct job *j);
-
-/* SURFACE DRC (job_drc.c): POINT, POINTS CLEAR, THICKEN, EDGE; defaults: no point,
- * THICKEN AUTO, EDGE OFF; ready with a POINT (EDGE ON: and RADIUS). */
-int job_drc_command(struct job *j, struct job_args *a);
-void job_drc_defaults(union path_geom *g);
-int job_drc_ready(const struct job *j);
+/* A model's hooks, one set per row of models.def (firmware/job_<name>.c, declared here
+ * from the rows), called directly from job.c (no function pointers: the static stack
+ * analysis sees every edge):
+ *   int  job_<m>_command(struct job *j, struct job_args *a)
+ *        a command of the model's (commands.def OWNER <M>, switch on a->cmd: <M>_CMD_*):
+ *        apply it to the job and return a wire status (the job unchanged on error);
+ *        a->v may serve as scratch
+ *   void job_<m>_defaults(union path_geom *g)
+ *        SURFACE <m>: the model's geometry afresh
+ *   int  job_<m>_ready(const struct job *j)
+ *        1 when the job has all RUN needs for the model, else 0 (job_ready: error:10)
+ * The models' commands, defaults and needs (the header of each job_<m>.c):
+ *   canal    CURVE, RADIUS (under every SURFACE); SURFACE CANAL keeps everything;
+ *            ready with CURVE, RADIUS and LINES or CIRCLES
+ *   gsr      CENTER, RADII, FRAME, FORM; defaults: centre 0, f_t(u) = u, FRAME FIXED
+ *            (not set), FORM RATIONAL; ready with CENTER (X|Y|Z, or all four P<i>),
+ *            RADII N and B, FRAME, and LINES or CIRCLES
+ *   channel  SECTION, AXES, SECTIONS CLEAR; defaults: no section; ready with a SECTION
+ *            and LINES or CIRCLES
+ *   drc      POINT, POINTS CLEAR, THICKEN, EDGE; defaults: no point, THICKEN AUTO,
+ *            EDGE OFF; ready with a POINT (EDGE ON: and RADIUS) */
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    int job_##name##_command(struct job *j, struct job_args *a);                                   \
+    void job_##name##_defaults(union path_geom *g);                                                \
+    int job_##name##_ready(const struct job *j);
+#include "models.def"
+#undef CP_MODEL
 
 /* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE. */
 void job_init(struct job *j);

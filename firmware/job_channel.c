@@ -14,10 +14,6 @@
  */
 #include "job.h"
 
-#define JOB_HAVE_SECTION JOB_HAVE_CHANNEL_SECTION
-
-CP_STATIC_ASSERT((JOB_HAVE_SECTION & ~JOB_HAVE_CHANNEL_MASK) == 0u, channel_bit_in_mask);
-
 void job_channel_defaults(union path_geom *g)
 {
     g->channel.count = 0u;
@@ -25,8 +21,7 @@ void job_channel_defaults(union path_geom *g)
 
 int job_channel_ready(const struct job *j)
 {
-    const uint16_t need = JOB_HAVE_SECTION | JOB_HAVE_RASTER;
-    return (j->have & need) == need;
+    return j->geom.channel.count > 0u && (j->have & JOB_HAVE_RASTER) != 0u;
 }
 
 /* Store section s (checked: channel_section_check) as section i (the next one or the
@@ -40,7 +35,6 @@ static int channel_store(struct job *j, const struct channel_section *s, unsigne
     }
     g->s[i] = *s;
     g->count = (uint8_t)(i + 1u);
-    j->have |= JOB_HAVE_SECTION;
     return CP_ST_OK;
 }
 
@@ -95,7 +89,6 @@ int job_channel_command(struct job *j, struct job_args *a)
         return channel_axes(j, a->v);
     case CHANNEL_CMD_SECTIONS_CLEAR:
         j->geom.channel.count = 0u;
-        j->have &= (uint16_t)~JOB_HAVE_SECTION;
         return CP_ST_OK;
     default: /* not CHANNEL's (unreachable: job.c calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;

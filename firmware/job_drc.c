@@ -18,8 +18,6 @@
  */
 #include "job.h"
 
-CP_STATIC_ASSERT((JOB_HAVE_DRC_POINTS & ~JOB_HAVE_DRC_MASK) == 0u, drc_bit_in_mask);
-
 void job_drc_defaults(union path_geom *g)
 {
     g->drc.n = 0u;
@@ -31,8 +29,8 @@ int job_drc_ready(const struct job *j)
 {
     /* EDGE ON is a fillet: without a RADIUS law the job is incomplete (error:10); LINES
      * may default (one line, u = 0) */
-    const uint16_t need = JOB_HAVE_DRC_POINTS | (j->geom.drc.edge != 0u ? JOB_HAVE_RADIUS : 0u);
-    return (j->have & need) == need;
+    const struct drc_cfg *g = &j->geom.drc;
+    return g->n > 0u && (g->edge == 0u || (j->have & JOB_HAVE_RADIUS) != 0u);
 }
 
 int job_drc_command(struct job *j, struct job_args *a)
@@ -57,11 +55,9 @@ int job_drc_command(struct job *j, struct job_args *a)
         g->p[g->n].y = v[1];
         g->p[g->n].z = v[2];
         g->n++;
-        j->have |= JOB_HAVE_DRC_POINTS;
         return CP_ST_OK;
     case DRC_CMD_POINTS_CLEAR:
         g->n = 0u;
-        j->have &= (uint16_t)~JOB_HAVE_DRC_POINTS;
         return CP_ST_OK;
     case DRC_CMD_THICKEN: /* AUTO (its value: DRC_PASSES_AUTO) | K */
         if (a->word == JOB_WORD_THICKEN_AUTO) {
