@@ -18,8 +18,10 @@
  *   PATH_DRC      discretely represented curve, thickened (seed 001)  [issue 6]
  * A kind whose model is not compiled in is refused by SURFACE (error:9).
  *
- * HOW TO ADD A MODEL <m> (kind PATH_<M>): one row in models.def, and its own files:
- *   1. firmware/<m>.h: struct <m>_cfg (geometry, plain data) and an iterator
+ * HOW TO ADD A MODEL <m> (kind PATH_<M>): one row in each table, and its own files:
+ *   1. firmware/models.def: CP_MODEL(<M>, <m>, CP_WITH_<M>, "<WORD>") (appended), and
+ *      CP_WITH_<M> in cp_config.h.
+ *   2. firmware/<m>.h, <m>.c: struct <m>_cfg (geometry, plain data) and an iterator
  *      struct <m>_path with
  *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
  *                               const struct toolpath_cfg *raster);
@@ -27,11 +29,12 @@
  *        int      <m>_path_next(struct <m>_path *, struct toolpath_pt *);
  *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
  *      and the fields count (0 after a failed init), k (points emitted), n, steps,
- *      link, mode. Include <m>.h below and give union path_geom its member <m>.
- *   2. firmware/job_<m>.c: job_<m>_command, job_<m>_defaults, job_<m>_ready (job.h),
- *      its commands as rows of commands.def, its have bits in job.h.
- *   3. its cp_err codes: rows appended to cp_status.def (the FROM column).
- *   4. docs/PROTOCOL.md: the commands; host_sim: a judge of the model's stream.
+ *      link, mode. Include <m>.h below (union path_geom and struct path follow).
+ *   3. firmware/job_<m>.c: job_<m>_command, job_<m>_defaults, job_<m>_ready (job.h
+ *      declares them from the row); its commands as rows of firmware/commands.def
+ *      (OWNER <M>, SURFACE OWN).
+ *   4. its cp_err codes (cp_types.h): rows appended to cp_status.def (the FROM column).
+ *   5. docs/PROTOCOL.md: the commands; tests/ref_<m>.c; host_sim/judge_<m>.c.
  */
 #ifndef PATH_H
 #define PATH_H
