@@ -30,7 +30,7 @@ struct job_cmd_row {
     const char *keyword; /* upper case */
     uint8_t owner;       /* enum job_owner */
     uint8_t shape;       /* enum job_shape */
-    uint8_t min, max;    /* numbers (JOB_ARGS_NUMBERS: MIN..MAX; COUNT_NUMBERS_OPTION: MIN) */
+    uint8_t min, max;    /* numbers (JOB_ARGS_NUMBERS: MIN..MAX; UINT_NUMBERS_OPTION: MIN) */
     uint8_t surface;     /* enum job_surface */
 };
 
@@ -227,18 +227,18 @@ static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, c
 }
 
 /* The word after the keyword (the word shapes, at least 2 tokens): a->word, its value and
- * the tokens it takes (*first, *na, the last word: *ntv), or a count instead (*count).
- * Returns a wire status. */
+ * the tokens it takes (*first, *na, the last word: *ntv), or an unsigned number instead
+ * (*uint). Returns a wire status. */
 static int word_args(const struct job_tokens *t, const struct job_cmd_row *r, struct job_args *a,
-                     unsigned *first, unsigned *na, unsigned *ntv, unsigned *count)
+                     unsigned *first, unsigned *na, unsigned *ntv, unsigned *uint)
 {
     a->word = token_word(t, 1u, a->cmd, 0u);
     if (a->word == JOB_NO_WORD) {
-        if (r->shape != JOB_ARGS_COUNT_OR_WORD) {
+        if (r->shape != JOB_ARGS_UINT_OR_WORD) {
             return CP_ST_BAD_KEYWORD;
         }
-        *na = 1u; /* the count */
-        *count = 1u;
+        *na = 1u; /* the unsigned number */
+        *uint = 1u;
         return CP_ST_OK;
     }
     a->value = words[a->word].value;
@@ -262,11 +262,11 @@ static int word_args(const struct job_tokens *t, const struct job_cmd_row *r, st
 }
 
 /* Check the arguments of command c as its shape says (enum job_shape: arity, words,
- * count, numbers, in that order) into *a. Returns a wire status. */
+ * unsigned number, numbers, in that order) into *a. Returns a wire status. */
 static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_args *a)
 {
     const struct job_cmd_row *r = &cmds[c];
-    unsigned first = 1u, na = 0u, ntv = t->n, count = 0u;
+    unsigned first = 1u, na = 0u, ntv = t->n, uint = 0u;
     int s = CP_ST_OK;
     a->cmd = c;
     a->word = JOB_NO_WORD;
@@ -281,7 +281,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         }
         na = t->n - 1u;
         break;
-    case JOB_ARGS_COUNT_NUMBERS_OPTION:
+    case JOB_ARGS_UINT_NUMBERS_OPTION:
         if (t->n == 3u + r->min && has_options(c)) { /* the option word first */
             a->option = token_word(t, t->n - 1u, c, 1u);
             if (a->option == JOB_NO_WORD) {
@@ -291,16 +291,16 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
             ntv--;
         }
         na = 1u + r->min;
-        count = 1u;
+        uint = 1u;
         break;
     case JOB_ARGS_ALONE: /* nothing after the keyword (job_line answers RUN before) */
         break;
-    default: /* a word after the keyword: exactly one token for WORD and COUNT_OR_WORD */
+    default: /* a word after the keyword: exactly one token for WORD and UINT_OR_WORD */
         if (t->n < 2u ||
-            (t->n != 2u && (r->shape == JOB_ARGS_WORD || r->shape == JOB_ARGS_COUNT_OR_WORD))) {
+            (t->n != 2u && (r->shape == JOB_ARGS_WORD || r->shape == JOB_ARGS_UINT_OR_WORD))) {
             return CP_ST_BAD_ARITY;
         }
-        s = word_args(t, r, a, &first, &na, &ntv, &count);
+        s = word_args(t, r, a, &first, &na, &ntv, &uint);
         break;
     }
     if (s != CP_ST_OK) {
@@ -309,7 +309,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
     if (ntv != first + na) {
         return CP_ST_BAD_ARITY;
     }
-    if (count) { /* the first argument is an unsigned number */
+    if (uint) { /* the first argument is an unsigned number */
         s = parse_uint(t->line + t->st[first], t->ln[first], 0xFFFFFFFFu, &a->u);
         if (s != CP_ST_OK) {
             return s;

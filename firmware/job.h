@@ -97,26 +97,26 @@ enum job_word {
 };
 
 /* How job_line checks a command's arguments, in this order: token count (error:3), words
- * (error:9), the count (parse_uint: error:4, above 2^32 - 1 error:6), the numbers
+ * (error:9), the unsigned number (parse_uint: error:4, above 2^32 - 1 error:6), the numbers
  * (parse_real: error:4/5/6), then the owner's hook checks ranges (error:6, 14, ...).
  * MIN, MAX: the CP_CMD row's columns. */
 enum job_shape {
-    JOB_ARGS_NUMBERS,              /* MIN..MAX numbers (TOL, FEED, SECTION, AXES, POINT) */
-    JOB_ARGS_WORD,                 /* exactly one word of the list: arity first, then the
-                                      word (FORMAT, CHECKSUM, SURFACE, SECTIONS, EDGE) */
-    JOB_ARGS_WORD_THEN_NUMBERS,    /* a word of the list, then the numbers of its row
-                                      (CURVE, RADIUS, CENTER, RADII, FRAME, FORM) */
-    JOB_ARGS_WORD_NUMBERS_OPTION,  /* as WORD_THEN_NUMBERS, but a word without numbers takes
-                                      nothing more (error:9), and one with numbers may end
-                                      with an option word, which the hook checks after its
-                                      ranges (JOB_BAD_WORD: error:9) (TOOL) */
-    JOB_ARGS_COUNT_NUMBERS_OPTION, /* an unsigned count, MIN numbers, then, if the command
+    JOB_ARGS_NUMBERS,             /* MIN..MAX numbers (TOL, FEED, SECTION, AXES, POINT) */
+    JOB_ARGS_WORD,                /* exactly one word of the list: arity first, then the
+                                     word (FORMAT, CHECKSUM, SURFACE, SECTIONS, EDGE) */
+    JOB_ARGS_WORD_THEN_NUMBERS,   /* a word of the list, then the numbers of its row
+                                     (CURVE, RADIUS, CENTER, RADII, FRAME, FORM) */
+    JOB_ARGS_WORD_NUMBERS_OPTION, /* as WORD_THEN_NUMBERS, but a word without numbers takes
+                                     nothing more (error:9), and one with numbers may end
+                                     with an option word, which the hook checks after its
+                                     ranges (JOB_BAD_WORD: error:9) (TOOL) */
+    JOB_ARGS_UINT_NUMBERS_OPTION, /* an unsigned number, MIN numbers, then, if the command
                                       has options, an optional option word, checked before
                                       the arity and the numbers (error:9) (LINES, CIRCLES) */
-    JOB_ARGS_COUNT_OR_WORD,        /* exactly one token: a word of the list, or an unsigned
-                                      count (STEPS, RXBUF, RESUME, THICKEN) */
-    JOB_ARGS_ALONE                 /* nothing after the keyword; with anything after it the
-                                      line is not a command (RUN) */
+    JOB_ARGS_UINT_OR_WORD,        /* exactly one token: a word of the list, or an unsigned
+                                      number (STEPS, RXBUF, RESUME, THICKEN) */
+    JOB_ARGS_ALONE                /* nothing after the keyword; with anything after it the
+                                     line is not a command (RUN) */
 };
 
 /* One command line as job_line has checked it for its owner's hook: the keyword, the
@@ -125,13 +125,13 @@ enum job_shape {
 struct job_args {
     enum job_cmd cmd;           /* the command */
     enum job_word word;         /* the word after the keyword, JOB_NO_WORD if none (or a
-                                   count instead: THICKEN K) */
+                                   number instead: THICKEN K) */
     unsigned value;             /* VALUE of the word's row (0 without a word) */
     enum job_word option;       /* the option word: JOB_NO_WORD when absent, JOB_BAD_WORD
                                    when it is none of the command's (TOOL) */
     unsigned option_value;      /* VALUE of the option's row (0 without one) */
     unsigned na;                /* numbers in v[] */
-    uint32_t u;                 /* the count (COUNT_* shapes), 0 without one */
+    uint32_t u;                 /* the unsigned number (UINT_* shapes), 0 without one */
     cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
 };
 
