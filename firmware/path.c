@@ -9,7 +9,8 @@
 /* ---- The canal row's adapters, until the raster rename (path.h) ----
  * toolpath_* under the models' names, the init with the models' signature (the canal's
  * surface is still raster->surf: its `surf` argument, the union's unused canal member,
- * is ignored). The rename turns these into redefinitions of canal_path_*: delete them. */
+ * is ignored). The rename (CANAL_PATH_H defined) switches them off; delete them then. */
+#ifndef CANAL_PATH_H
 static CP_ALWAYS_INLINE int canal_path_init(struct canal_path *it, const struct canal_cfg *surf,
                                             const struct toolpath_cfg *raster)
 {
@@ -28,6 +29,7 @@ static CP_ALWAYS_INLINE int canal_path_seek(struct canal_path *it, uint32_t k)
 {
     return toolpath_seek(it, k);
 }
+#endif
 
 int path_has(unsigned kind)
 {

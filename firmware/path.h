@@ -69,12 +69,14 @@ enum path_kind {
 /* ---- The canal row's names, until the raster rename (wt-raster, issue 16 item 2) ----
  * The rows of models.def reach every model as struct <name>_path and <name>_path_*.
  * toolpath.h still names the canal's iterator struct toolpath and toolpath_init/count/
- * next/seek, and its surface rides in the raster request (toolpath_cfg.surf). Until the
- * rename (struct toolpath -> struct canal_path, toolpath_* -> canal_path_*) and the
- * canal geometry split (canal_path_init(it, const struct canal_cfg *, raster)), the
- * canal row goes through this alias and the adapters of path.c; then both go and the
- * canal row is like the others. */
+ * next/seek, and its surface rides in the raster request (toolpath_cfg.surf). The rename
+ * (rename.sed: struct toolpath -> struct canal_path, toolpath_* -> canal_path_*, and the
+ * header guard TOOLPATH_H -> CANAL_PATH_H) switches this alias and path.c's adapters off
+ * by itself; they can then be deleted. The canal row's init then calls
+ * canal_path_init(it, &geom->canal, raster), the signature of the canal geometry split. */
+#ifndef CANAL_PATH_H
 #define canal_path toolpath
+#endif
 
 /* The geometry of the model of `kind` (the job's SURFACE): member <name> of models.def.
  * The canal's member is not used yet (its surface is still the raster request's surf,
