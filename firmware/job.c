@@ -144,7 +144,7 @@ void job_init(struct job *j)
         b[i] = 0u;
     }
     j->cfg.n = 1;
-    j->cfg.link = TOOLPATH_LINK_AUTO;
+    j->cfg.link = RASTER_LINK_AUTO;
     j->cfg.tol = CP_R(0.001);
     j->rxbuf = 128u;
 }
@@ -327,7 +327,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
 static int job_tool(struct job *j, const struct job_args *a)
 {
     if (a->word == JOB_WORD_TOOL_NONE) {
-        j->cfg.output = (uint8_t)a->value; /* TOOLPATH_OUT_SURFACE */
+        j->cfg.output = (uint8_t)a->value; /* RASTER_OUT_SURFACE */
         j->cfg.tool_r = CP_R(0.0);
         return CP_ST_OK;
     }
@@ -356,11 +356,11 @@ static int job_raster(struct job *j, const struct job_args *a)
         (v[0] == v[1] && n > 1u)) {
         return CP_ST_OUT_OF_RANGE;
     }
-    j->cfg.mode = circles ? TOOLPATH_CIRCLES : TOOLPATH_LINES;
+    j->cfg.mode = circles ? RASTER_CIRCLES : RASTER_LINES;
     /* PATCH: between the lines that start at u0, u1; CIRCLES alone: the angles u0..u1 */
     j->cfg.span = a->option != JOB_NO_WORD ? (uint8_t)a->option_value
-                  : circles                ? TOOLPATH_SPAN_ANGLE
-                                           : TOOLPATH_SPAN_LINES;
+                  : circles                ? RASTER_SPAN_ANGLE
+                                           : RASTER_SPAN_LINES;
     j->cfg.n = (uint16_t)n;
     j->cfg.u0 = v[0] * CP_DEG2RAD;
     j->cfg.u1 = v[1] * CP_DEG2RAD;

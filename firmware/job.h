@@ -55,7 +55,7 @@ enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
 #define JOB_RUN (-2)
 
 struct job {
-    struct toolpath_cfg cfg; /* raster (every model) and canal geometry, C units (radians) */
+    struct raster_cfg cfg; /* raster (every model) and canal geometry, C units (radians) */
     union path_geom geom;    /* geometry of the other models (the one of `kind`) */
     cp_real feed;            /* mm/min, 0 = omit F */
     uint16_t rxbuf;          /* machine RX buffer, bytes */

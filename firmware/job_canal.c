@@ -1,5 +1,5 @@
 /* job_canal.c - protocol commands of the canal's geometry (docs/PROTOCOL.md); the surface
- * is struct canal_cfg in job->cfg.surf (toolpath.h), kept by SURFACE: every model may use
+ * is struct canal_cfg in job->cfg.surf (canal_path.h), kept by SURFACE: every model may use
  * it (DRC EDGE ON fillets with its RADIUS law).
  * SPDX-License-Identifier: MIT
  *

@@ -12,22 +12,22 @@
  * is ignored). The rename (CANAL_PATH_H defined) switches them off; delete them then. */
 #ifndef CANAL_PATH_H
 static CP_ALWAYS_INLINE int canal_path_init(struct canal_path *it, const struct canal_cfg *surf,
-                                            const struct toolpath_cfg *raster)
+                                            const struct raster_cfg *raster)
 {
     (void)surf;
-    return toolpath_init(it, raster);
+    return canal_path_init(it, raster);
 }
 static CP_ALWAYS_INLINE uint32_t canal_path_count(const struct canal_path *it)
 {
-    return toolpath_count(it);
+    return canal_path_count(it);
 }
-static CP_ALWAYS_INLINE int canal_path_next(struct canal_path *it, struct toolpath_pt *pt)
+static CP_ALWAYS_INLINE int canal_path_next(struct canal_path *it, struct raster_pt *pt)
 {
-    return toolpath_next(it, pt);
+    return canal_path_next(it, pt);
 }
 static CP_ALWAYS_INLINE int canal_path_seek(struct canal_path *it, uint32_t k)
 {
-    return toolpath_seek(it, k);
+    return canal_path_seek(it, k);
 }
 #endif
 
@@ -58,7 +58,7 @@ int path_has(unsigned kind)
     p->info.mode = p->u.name.mode;                                                                 \
     return CP_OK;
 
-int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
+int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
               const union path_geom *geom)
 {
     int err;
@@ -96,7 +96,7 @@ uint32_t path_pos(const struct path *p)
     }
 }
 
-int path_next(struct path *p, struct toolpath_pt *pt)
+int path_next(struct path *p, struct raster_pt *pt)
 {
     if (p->info.count == 0u) {
         return CP_ERR_DONE;

@@ -2,10 +2,10 @@
  * SPDX-License-Identifier: MIT
  *
  * The stream (proto.c) pulls points from one `struct path`: a tagged union of the
- * models' iterators, each yielding exactly path_count() `struct toolpath_pt` with
- * the conventions of toolpath.h (zigzag lines, link points, fixed counts decided
+ * models' iterators, each yielding exactly path_count() `struct raster_pt` with
+ * the conventions of canal_path.h (zigzag lines, link points, fixed counts decided
  * at init, seek(k) reproducing point k bit for bit). The raster request (mode,
- * n, u0, u1, steps/tol, link, tool, output) is the job's `struct toolpath_cfg`
+ * n, u0, u1, steps/tol, link, tool, output) is the job's `struct raster_cfg`
  * for every model; the canal model also takes its geometry from it (cfg.surf),
  * the other models from `union path_geom`.
  *
@@ -24,9 +24,9 @@
  *   2. firmware/<m>.h, <m>.c: struct <m>_cfg (geometry, plain data) and an iterator
  *      struct <m>_path with
  *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
- *                               const struct toolpath_cfg *raster);
+ *                               const struct raster_cfg *raster);
  *        uint32_t <m>_path_count(const struct <m>_path *);
- *        int      <m>_path_next(struct <m>_path *, struct toolpath_pt *);
+ *        int      <m>_path_next(struct <m>_path *, struct raster_pt *);
  *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
  *      and the fields count (0 after a failed init), k (points emitted), n, steps,
  *      link, mode. Include <m>.h below (union path_geom and struct path follow).
@@ -39,7 +39,7 @@
 #ifndef PATH_H
 #define PATH_H
 
-#include "toolpath.h"
+#include "canal_path.h"
 #include "channel.h"
 #include "gsr.h"
 #include "drc.h"
@@ -68,10 +68,10 @@ enum path_kind {
 
 /* ---- The canal row's names, until the raster rename (wt-raster, issue 16 item 2) ----
  * The rows of models.def reach every model as struct <name>_path and <name>_path_*.
- * toolpath.h still names the canal's iterator struct toolpath and toolpath_init/count/
- * next/seek, and its surface rides in the raster request (toolpath_cfg.surf). The rename
- * (rename.sed: struct toolpath -> struct canal_path, toolpath_* -> canal_path_*, and the
- * header guard TOOLPATH_H -> CANAL_PATH_H) switches this alias and path.c's adapters off
+ * canal_path.h still names the canal's iterator struct canal_path and canal_path_init/count/
+ * next/seek, and its surface rides in the raster request (raster_cfg.surf). The rename
+ * (rename.sed: struct canal_path -> struct canal_path, toolpath_* -> canal_path_*, and the
+ * header guard CANAL_PATH_H -> CANAL_PATH_H) switches this alias and path.c's adapters off
  * by itself; they can then be deleted. The canal row's init then calls
  * canal_path_init(it, &geom->canal, raster), the signature of the canal geometry split. */
 #ifndef CANAL_PATH_H
@@ -95,7 +95,7 @@ struct path_info {
     uint16_t n;     /* lines or circles/rings */
     uint16_t steps; /* steps per line (points per line = steps + 1) */
     uint16_t link;  /* link points between consecutive lines */
-    uint8_t mode;   /* enum toolpath_mode: 0 lines, 1 circles/rings */
+    uint8_t mode;   /* enum raster_mode: 0 lines, 1 circles/rings */
 };
 
 struct path {
@@ -113,8 +113,8 @@ struct path {
 /* Initialise the iterator of model `kind` on the raster (and, for the canal, the
  * geometry) in `raster` and the geometry in `geom` (the job's union, for every kind).
  * Errors: CP_ERR_INVAL for a kind that is not compiled in, or raster or geom NULL, else
- * the model's init codes (toolpath_init for the canal). On error p->info.count is 0. */
-CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct toolpath_cfg *raster,
+ * the model's init codes (canal_path_init for the canal). On error p->info.count is 0. */
+CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
                             const union path_geom *geom);
 
 /* 1 when model `kind` (enum path_kind) is compiled in (models.def WITH), else 0. */
@@ -127,7 +127,7 @@ uint32_t path_count(const struct path *p);
 uint32_t path_pos(const struct path *p);
 
 /* The next point. Returns CP_OK, or CP_ERR_DONE after path_count() points. */
-int path_next(struct path *p, struct toolpath_pt *pt);
+int path_next(struct path *p, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count): the next path_next yields exactly what it
  * yielded the first time at k. Returns CP_OK or CP_ERR_RANGE. */

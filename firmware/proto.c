@@ -240,14 +240,14 @@ static int run_start(struct proto *p, uint32_t first)
         v[3] = p->path.info.steps;
         v[4] = p->path.info.link;
         tx_fields(p, "[RUN:points=\0,first=\0,mode=", v, 2u);
-        tx_str(p, p->path.info.mode == TOOLPATH_LINES ? "LINES" : "CIRCLES");
+        tx_str(p, p->path.info.mode == RASTER_LINES ? "LINES" : "CIRCLES");
         tx_fields(p, ",n=\0,steps=\0,link=\0]\n", v + 2, 3u);
     }
     return CP_ST_OK;
 }
 
 /* Position the iterator on point k and fetch it. */
-static int point_at(struct proto *p, uint32_t k, struct toolpath_pt *pt)
+static int point_at(struct proto *p, uint32_t k, struct raster_pt *pt)
 {
     if (path_pos(&p->path) != k && path_seek(&p->path, k) != CP_OK) {
         return CP_ERR_RANGE;
@@ -283,7 +283,7 @@ static int gcode_line(struct proto *p, uint32_t idx)
         (void)fmt_str(out, cap, &pos, idx + 2u == p->hdr ? "M110 N0" : "G21 G90 G17");
     } else {
         static const char word[4][5] = {"G1 X", " Y", " Z", " F"};
-        struct toolpath_pt pt;
+        struct raster_pt pt;
         cp_real v[4];
         unsigned i, nw = p->job.feed > CP_R(0.0) ? 4u : 3u;
         int e = point_at(p, p->start_k + idx - p->hdr, &pt);
@@ -335,7 +335,7 @@ static int frames_item(struct proto *p, uint32_t idx, int status, uint8_t *out, 
         type = FRAME_BEGIN;
         plen = 15u;
     } else if (idx <= npts) {
-        struct toolpath_pt pt;
+        struct raster_pt pt;
         uint32_t k = p->start_k + idx - 1u;
         int e = point_at(p, k, &pt);
         cp_real v[6];

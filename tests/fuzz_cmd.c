@@ -73,7 +73,7 @@ static size_t in_base;         /* bytes of in[] dropped by in_reset (progress co
  * may keep pointers into the snapshot it was initialised on (the DRC and GSR paths
  * do), so that snapshot stays put while the iterator is in use. */
 struct snap {
-    struct toolpath_cfg cfg;
+    struct raster_cfg cfg;
     union path_geom geom;
     uint8_t kind;
 };
@@ -164,7 +164,7 @@ static int32_t q(cp_real v, cp_real scale)
     return (int32_t)cp_floor(v * scale + CP_R(0.5));
 }
 
-static int ref_point_at(uint32_t k, struct toolpath_pt *pt)
+static int ref_point_at(uint32_t k, struct raster_pt *pt)
 {
     if (ref_cur == NULL || !ref_cur->ok) {
         return 0;
@@ -330,7 +330,7 @@ static long fixed4(const char *s, int *ok)
 
 static void check_g1(const char *g, uint32_t k)
 {
-    struct toolpath_pt pt;
+    struct raster_pt pt;
     const char *x = strstr(g, " X"), *y = strstr(g, " Y"), *z = strstr(g, " Z");
     int ok = 1;
     long vx, vy, vz;
@@ -436,7 +436,7 @@ static void frame_in(const uint8_t *f)
             FAIL("bad BEGIN frame");
         }
     } else if (f[2] == FRAME_POINT) {
-        struct toolpath_pt pt;
+        struct raster_pt pt;
         uint32_t k = frame_get_u32(f + 3);
         if (f[0] != FRAME_POINT_LEN || !ref_point_at(k, &pt)) {
             FAIL("bad POINT frame (k %u)", (unsigned)k);

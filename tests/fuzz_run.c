@@ -22,7 +22,7 @@
  * input starts from a byte copy of that state, which is exactly the state a fresh
  * set-up reaches (the firmware has no state outside struct proto and the HAL).
  * The expected POINT fields of every k are computed once per job by an
- * independent iterator (toolpath_init on the job's cfg, then toolpath_next from 0
+ * independent iterator (canal_path_init on the job's cfg, then canal_path_next from 0
  * to the end: no seek), and each POINT frame is compared with that table. This is
  * the same comparison as before, field by field, without recomputing the job on
  * every input. Likewise the RUN / RESUME k line and the 4 polls after it run once
@@ -91,15 +91,15 @@ static struct {
     int ready;
     struct proto eng;
     struct hal_mem mem;
-    struct toolpath ref; /* initialised, never advanced: BEGIN fields */
+    struct canal_path ref; /* initialised, never advanced: BEGIN fields */
     uint32_t count;
     struct expect *pts;
 } snap[NJOBS];
-static const struct toolpath *ref; /* snap[j].ref of the current input */
+static const struct canal_path *ref; /* snap[j].ref of the current input */
 static const struct expect *exp_pts;
 /* per job and first point k (RUN: 0, RESUME k: 1..127), built on first use: the
  * engine and the harness's receive state after the RUN / RESUME line and its first 4
- * polls (the firmware's run start: toolpath_init, the BEGIN frame and the first
+ * polls (the firmware's run start: canal_path_init, the BEGIN frame and the first
  * points, each checked then). The run start was ~15 % of every input and is the same
  * for every input with that job and k: the firmware is deterministic and has no
  * state outside struct proto and the HAL. */
@@ -172,7 +172,7 @@ static void frame_in(const uint8_t *f)
     }
     switch (f[2]) {
     case FRAME_BEGIN:
-        if (f[1] != 0u || f[0] != 21u || frame_get_u32(f + 3) != toolpath_count(ref) ||
+        if (f[1] != 0u || f[0] != 21u || frame_get_u32(f + 3) != canal_path_count(ref) ||
             frame_get_u32(f + 7) != first || frame_get_u16(f + 11) != ref->n ||
             frame_get_u16(f + 13) != ref->steps || frame_get_u16(f + 15) != ref->link ||
             f[17] != ref->mode) {
@@ -292,8 +292,8 @@ static void command(const char *cmd)
 static void job_setup(unsigned j)
 {
     struct proto_cfg cfg;
-    struct toolpath it;
-    struct toolpath_pt pt;
+    struct canal_path it;
+    struct raster_pt pt;
     uint32_t k;
     int i;
     hal_mem_init(&mem, &uart);
@@ -309,11 +309,11 @@ static void job_setup(unsigned j)
     }
     command("FORMAT FRAMES");
     /* the reference: a separate iterator over a copy of the job's cfg */
-    if (toolpath_init(&snap[j].ref, &eng.job.cfg) != CP_OK ||
-        toolpath_init(&it, &eng.job.cfg) != CP_OK) {
+    if (canal_path_init(&snap[j].ref, &eng.job.cfg) != CP_OK ||
+        canal_path_init(&it, &eng.job.cfg) != CP_OK) {
         FAIL("job %u rejected", j);
     }
-    snap[j].count = toolpath_count(&it);
+    snap[j].count = canal_path_count(&it);
     if (snap[j].count == 0u || snap[j].count > EXPECT_MAX) {
         FAIL("job %u has %u points", j, (unsigned)snap[j].count);
     }
@@ -323,7 +323,7 @@ static void job_setup(unsigned j)
     }
     for (k = 0; k < snap[j].count; k++) {
         struct expect *e = &snap[j].pts[k];
-        if (toolpath_next(&it, &pt) != CP_OK) {
+        if (canal_path_next(&it, &pt) != CP_OK) {
             FAIL("reference iterator failed at %u", (unsigned)k);
         }
         e->x = q(pt.p.x, CP_R(10000.0));

@@ -277,28 +277,28 @@ static void duct(struct channel_cfg *g)
     }
 }
 
-static int path_err(const struct channel_cfg *g, const struct toolpath_cfg *rs)
+static int path_err(const struct channel_cfg *g, const struct raster_cfg *rs)
 {
     static struct channel_path cp;
     return channel_path_init(&cp, g, rs);
 }
 
-static void raster(struct toolpath_cfg *rs)
+static void raster(struct raster_cfg *rs)
 {
     memset(rs, 0, sizeof *rs);
-    rs->mode = TOOLPATH_LINES;
+    rs->mode = RASTER_LINES;
     rs->n = 3;
     rs->u0 = CP_R(-1.5);
     rs->u1 = CP_R(1.5);
     rs->tol = CP_R(0.05);
-    rs->link = TOOLPATH_LINK_AUTO;
+    rs->link = RASTER_LINK_AUTO;
 }
 
 int test_channel_rejects(void)
 {
     struct channel_cfg g;
     struct channel ch;
-    struct toolpath_cfg rs;
+    struct raster_cfg rs;
     raster(&rs);
     duct(&g);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
@@ -399,14 +399,14 @@ int test_channel_rejects(void)
     example(&g, NULL, 0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
     /* tool: a ball larger than the wall's curvature radius folds the centre path */
-    rs.output = TOOLPATH_OUT_CENTRE;
+    rs.output = RASTER_OUT_CENTRE;
     rs.tool_r = CP_R(2.0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_TOOL);
     rs.tool_r = CP_R(0.25);
     CHECK_EQ_INT(path_err(&g, &rs), CP_OK);
     rs.tool_r = CP_R(-1.0);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_TOOL);
-    rs.output = TOOLPATH_OUT_SURFACE;
+    rs.output = RASTER_OUT_SURFACE;
     rs.tool_r = CP_R(0.5);
     CHECK_EQ_INT(path_err(&g, &rs), CP_ERR_INVAL);
     raster(&rs);
@@ -425,7 +425,7 @@ int test_channel_rejects(void)
     return 0;
 }
 
-static int same_pt(const struct toolpath_pt *a, const struct toolpath_pt *b)
+static int same_pt(const struct raster_pt *a, const struct raster_pt *b)
 {
     return a->p.x == b->p.x && a->p.y == b->p.y && a->p.z == b->p.z && a->n.x == b->n.x &&
            a->n.y == b->n.y && a->n.z == b->n.z && a->t == b->t && a->line == b->line &&
@@ -437,8 +437,8 @@ static struct channel_path it;
 int test_channel_iter(void)
 {
     struct channel_cfg g;
-    struct toolpath_cfg rs;
-    struct toolpath_pt pt, prev, keep[4];
+    struct raster_cfg rs;
+    struct raster_pt pt, prev, keep[4];
     uint32_t k, cnt, marks[4];
     int mode;
     double smax = 0.0, emax = 0.0;
