@@ -1,70 +1,135 @@
-/* job.c - the fillet job assembled from protocol commands.
+/* job.c - the fillet job assembled from protocol commands: the commands of commands.def,
+ * the models of models.def.
  * SPDX-License-Identifier: MIT
+ *
+ * job_line finds the command of a line's keyword, checks its arguments as the command's
+ * shape says (enum job_shape) and calls its owner's hook: job.c's own (raster, output,
+ * SURFACE) or a model's (job_<m>_command, a direct call per row of models.def: no
+ * function pointers, so the static stack analysis sees every edge).
  */
 #include "job.h"
 #include "parse.h"
 
-/* The models other than the canal (path.h: how to add a model). Direct calls, no
- * function pointers, so the static stack analysis sees every path. */
-
-/* have bits RUN needs, per enum path_kind (0: the model is not compiled in) */
-static const uint16_t need[PATH_KINDS] = {
-    JOB_HAVE_ALL, /* PATH_CANAL */
-#if PATH_HAVE_GSR
-    JOB_HAVE_GSR_CENTER | JOB_HAVE_GSR_RADII | JOB_HAVE_GSR_FRAME | JOB_HAVE_RASTER, /* PATH_GSR */
-#else
-    0u,
-#endif
-#if PATH_HAVE_CHANNEL
-    JOB_HAVE_CHANNEL_SECTION | JOB_HAVE_RASTER, /* PATH_CHANNEL */
-#else
-    0u,
-#endif
-#if PATH_HAVE_DRC
-    JOB_HAVE_DRC_POINTS /* PATH_DRC */
-#else
-    0u
-#endif
+/* Who applies a command (CP_CMD's OWNER): a model (enum path_kind) or one of these. */
+enum job_owner {
+#define CP_MODEL(NAME, name, WITH, WORD) JOB_OWNER_##NAME = PATH_##NAME,
+#include "models.def"
+#undef CP_MODEL
+    JOB_OWNER_JOB = PATH_KINDS, /* job_own_command below */
+    JOB_OWNER_PROTO             /* the protocol's: job_line answers JOB_RUN */
 };
+
+/* Under which SURFACE a command is accepted (CP_CMD's SURFACE). */
+enum job_surface {
+    JOB_SURFACE_ANY = 0, /* every one */
+    JOB_SURFACE_OWN = 1  /* its owner's only (else error:24) */
+};
+
+/* A CP_CMD row. */
+struct job_cmd_row {
+    const char *keyword; /* upper case */
+    uint8_t owner;       /* enum job_owner */
+    uint8_t shape;       /* enum job_shape */
+    uint8_t min, max;    /* numbers (JOB_ARGS_NUMBERS: MIN..MAX; UINT_NUMBERS_OPTION: MIN) */
+    uint8_t surface;     /* enum job_surface */
+};
+
+/* A CP_CMD_WORD or CP_CMD_OPTION row. */
+struct job_word_row {
+    const char *text; /* upper case */
+    uint8_t cmd;      /* enum job_cmd of its command */
+    uint8_t option;   /* 1: an option word (CP_CMD_OPTION) */
+    uint8_t numbers;  /* numbers after it (a word) */
+    uint8_t value;    /* what the hook stores for it */
+};
+
+CP_STATIC_ASSERT(JOB_CMDS <= 255 && JOB_BAD_WORD <= 255, ids_fit_a_byte);
+/* every keyword and word shorter than PARSE_KW_MAX, every VALUE a byte */
+#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE)                                     \
+    CP_STATIC_ASSERT(sizeof(KEYWORD) <= PARSE_KW_MAX, kw_##OWNER##_##NAME);
+#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE)                                               \
+    CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, word_##WORD);
+#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE)                                                      \
+    CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, option_##WORD);
+#include "commands.def"
+#undef CP_CMD
+#undef CP_CMD_WORD
+#undef CP_CMD_OPTION
+
+static const struct job_cmd_row cmds[JOB_CMDS] = {
+#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE)                                     \
+    [OWNER##_CMD_##NAME] = {.keyword = KEYWORD,                                                    \
+                            .owner = JOB_OWNER_##OWNER,                                            \
+                            .shape = JOB_ARGS_##SHAPE,                                             \
+                            .min = MIN,                                                            \
+                            .max = MAX,                                                            \
+                            .surface = JOB_SURFACE_##SURFACE},
+#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE)
+#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE)
+#include "commands.def"
+#undef CP_CMD
+#undef CP_CMD_WORD
+#undef CP_CMD_OPTION
+};
+
+/* clang-format off */
+static const struct job_word_row words[JOB_WORDS] = {
+#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE)
+#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE) \
+    [JOB_WORD_##WORD] = {.text = TEXT, .cmd = CMD, .option = 0u, .numbers = NUMBERS, \
+                         .value = VALUE},
+#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE) \
+    [JOB_WORD_##WORD] = {.text = TEXT, .cmd = CMD, .option = 1u, .numbers = 0u, .value = VALUE},
+#include "commands.def"
+#undef CP_CMD
+#undef CP_CMD_WORD
+#undef CP_CMD_OPTION
+};
+/* clang-format on */
+
+/* The tokens of one command line. */
+struct job_tokens {
+    const char *line;
+    unsigned n; /* tokens (JOB_MAX_TOKENS + 1: more) */
+    uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
+};
+
+/* ---- the models of models.def: one case per row, the rows not compiled in left out ---- */
+
+const char *job_models(void)
+{
+    /* "+WORD" of every compiled-in row; the list starts after the first '+' */
+    static const char models[] =
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, "+" WORD)
+#include "models.def"
+#undef CP_MODEL
+        ;
+    return models + 1;
+}
 
 /* SURFACE <k>: model k's geometry starts afresh. */
 static void model_defaults(unsigned k, union path_geom *g)
 {
     switch (k) {
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        job_gsr_defaults(g);
-        break;
-#endif
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        job_channel_defaults(g);
-        break;
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        job_drc_defaults(g);
-        break;
-#endif
-    default: /* the canal: job_geom_fill copies j->canal into g at RUN */
-        (void)g;
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    PATH_IF(WITH, case PATH_##NAME : job_##name##_defaults(g); break;)
+#include "models.def"
+#undef CP_MODEL
+    default:
         break;
     }
 }
 
-const char *job_models(void)
+int job_ready(const struct job *j)
 {
-    return "CANAL"
-#if PATH_HAVE_GSR
-           "+GSR"
-#endif
-#if PATH_HAVE_CHANNEL
-           "+CHANNEL"
-#endif
-#if PATH_HAVE_DRC
-           "+DRC"
-#endif
-        ;
+    switch (j->kind) {
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    PATH_IF(WITH, case PATH_##NAME : return job_##name##_ready(j) ? CP_ST_OK : CP_ST_NO_JOB;)
+#include "models.def"
+#undef CP_MODEL
+    default:
+        return CP_ST_NO_JOB;
+    }
 }
 
 void job_init(struct job *j)
@@ -84,18 +149,7 @@ void job_init(struct job *j)
     j->rxbuf = 128u;
 }
 
-int job_ready(const struct job *j)
-{
-    uint16_t nd = j->kind < PATH_KINDS ? need[j->kind] : 0u;
-#if PATH_HAVE_DRC
-    /* need[] is per kind: SURFACE DRC with EDGE ON also needs RADIUS (a fillet without
-     * a radius law is an incomplete job, error:10; LINES may default: one line, u = 0) */
-    if (j->kind == PATH_DRC && j->geom.drc.edge != 0u) {
-        nd |= JOB_HAVE_RADIUS;
-    }
-#endif
-    return nd != 0u && (j->have & nd) == nd ? CP_ST_OK : CP_ST_NO_JOB;
-}
+/* ---- lookups in the tables of commands.def ---- */
 
 void job_geom_fill(struct job *j)
 {
@@ -114,103 +168,74 @@ void job_geom_fill(struct job *j)
     (void)i;
 }
 
-/* Every keyword of the job commands, packed: each entry is a lead character, the
- * keyword (upper case, shorter than PARSE_KW_MAX) and its NUL; a "|" ends a list (no
- * pointer table, no padding). List 0 holds the commands (enum order below: the
- * canal's, the protocol's RUN and RESUME, then each model's in its hook's order), list
- * 1 + c the words that may follow command c (the enum values in their order). The
- * lead character of a command says how its arguments are checked (job_command):
- *   K  a word from its list, then that word's numbers (the word's lead digit)
- *   T  TOOL: as K, but NONE takes nothing more (else error:9) and BALL r an optional
- *      TIP|CENTRE|CENTER
- *   W  exactly one word from its list (arity checked first)
- *   U  exactly one token: a word from its list, or an unsigned number
- *   ;  n u0 u1: an unsigned number, then two numbers (CIRCLES: an optional PATCH)
- *   :  POINT: two or three numbers
- *   0-9  that many numbers
- *   -  RUN: nothing more (job_line; with anything after it, not a command)
- * RESUME k is a U with an empty list: its k is the unsigned number (job_line). */
-/* clang-format off */
-static const char words[] =
-    "KCURVE\0" "KRADIUS\0" "TTOOL\0" ";LINES\0" ";CIRCLES\0" "USTEPS\0" "1TOL\0" "1FEED\0"
-    "URXBUF\0" "WFORMAT\0" "WCHECKSUM\0" "WSURFACE\0" "-RUN\0" "URESUME\0"
-    "KCENTER\0" "KRADII\0" "KFRAME\0" "KFORM\0"   /* SURFACE GSR (job_gsr.c) */
-    "9SECTION\0" "6AXES\0" "WSECTIONS\0"         /* SURFACE CHANNEL (job_channel.c) */
-    ":POINT\0" "WPOINTS\0" "UTHICKEN\0" "WEDGE\0" /* SURFACE DRC (job_drc.c) */
-    "|"
-    /* CURVE, RADIUS: enum canal_curve_kind, enum canal_radius_kind and their numbers (the
-     * canal's own counts, curve_nparams/radius_nparams in canal.c); TOOL */
-    "4LINE\0" "5ARC\0" "6ELLIPSE\0" "8BEZIER\0" "|"
-    "1CONST\0" "2LINEAR\0" "3COS\0" "4CUBIC\0" "|"
-    "0NONE\0" "1BALL\0" "|"
-    "|" "|" "|" "|" "|" "|" /* LINES .. RXBUF */
-    "0GCODE\0" "0FRAMES\0" "|"        /* enum job_format */
-    "0OFF\0" "0ON\0" "|"
-    "0CANAL\0" "0GSR\0" "0CHANNEL\0" "0DRC\0" "|" /* enum path_kind */
-    "|" "|"                                     /* RUN, RESUME */
-    /* CENTER X|Y|Z a0 a1 a2 a3 b c w, P0..P3 x y z; RADII N|B|T ...; FRAME; FORM */
-    "7X\0" "7Y\0" "7Z\0" "3P0\0" "3P1\0" "3P2\0" "3P3\0" "|"
-    "7N\0" "7B\0" "7T\0" "|"
-    "0FIXED\0" "0FRENET\0" "3N0\0" "3RMF\0" "|"
-    "0RATIONAL\0" "0TRIG\0" "|"
-    "|" "|" "0CLEAR\0" "|"                     /* SECTION, AXES, SECTIONS */
-    "|" "0CLEAR\0" "|" "0AUTO\0" "|" "0OFF\0" "0ON"; /* POINT, POINTS, THICKEN, EDGE */
-/* clang-format on */
-enum { KW_CURVE, KW_RADIUS, KW_TOOL, KW_LINES, KW_CIRCLES, KW_STEPS, KW_TOL, KW_FEED, KW_RXBUF,
-       KW_FORMAT, KW_CHECKSUM, KW_JOB, KW_RUN, KW_RESUME, KW_GSR, KW_CHANNEL = KW_GSR + 4,
-       KW_DRC = KW_CHANNEL + 3 };
-
-/* Index of s[0..n) (parse_is) in list `list` of words, *lead = its lead character, or
- * '\0' if it is none of them. */
-static unsigned job_word(const char *s, size_t n, unsigned list, char *lead)
+/* The command whose keyword s[0..n) is (parse_is), JOB_CMDS if none. */
+static unsigned find_cmd(const char *s, size_t n)
 {
-    unsigned i, k = 0;
-    *lead = '\0';
-    for (i = 0; i < sizeof words; i++) {
-        const char *w = words + i;
-        if (i > 0u && w[-1] != '\0' && w[-1] != '|') {
-            continue; /* not the start of an entry */
-        }
-        if (*w == '|') {
-            if (list-- == 0u) {
-                break;
-            }
-            k = 0;
-        } else if (list == 0u && parse_is(s, n, w + 1)) {
-            *lead = *w;
+    unsigned c;
+    for (c = 0; c < (unsigned)JOB_CMDS; c++) {
+        if (parse_is(s, n, cmds[c].keyword)) {
             break;
-        } else {
-            k++;
         }
     }
-    return k;
+    return c;
 }
 
-/* The model of command c (0 for the canal's and the protocol's). */
-static unsigned model_of(unsigned c)
+/* The word (option 0) or option word (option 1) of command c that s[0..n) is,
+ * JOB_NO_WORD if none. */
+static enum job_word find_word(unsigned c, unsigned option, const char *s, size_t n)
 {
-    return (unsigned)(c >= KW_GSR) + (unsigned)(c >= KW_CHANNEL) + (unsigned)(c >= KW_DRC);
+    unsigned w;
+    for (w = 0; w < (unsigned)JOB_WORDS; w++) {
+        if (words[w].cmd == c && words[w].option == option && parse_is(s, n, words[w].text)) {
+            return (enum job_word)w;
+        }
+    }
+    return JOB_NO_WORD;
+}
+
+/* 1 if command c has option words. */
+static int has_options(unsigned c)
+{
+    unsigned w;
+    for (w = 0; w < (unsigned)JOB_WORDS; w++) {
+        if (words[w].cmd == c && words[w].option != 0u) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Token i of t as a word or option word of command c. */
+static enum job_word token_word(const struct job_tokens *t, unsigned i, unsigned c, unsigned option)
+{
+    return find_word(c, option, t->line + t->st[i], t->ln[i]);
+}
+
+/* 1 if the commands of `owner` are compiled in. */
+static int owner_built(unsigned owner)
+{
+    return owner >= PATH_KINDS || path_has(owner);
 }
 
 int job_is_command(const char *line, size_t len)
 {
     size_t n = 0;
-    char lead;
     unsigned c;
     while (n < len && line[n] != ' ') {
         n++;
     }
-    c = job_word(line, n, 0u, &lead);
-    return lead != '\0' && need[model_of(c)] != 0u;
+    c = find_cmd(line, n);
+    return c < (unsigned)JOB_CMDS && owner_built(cmds[c].owner);
 }
 
-/* Parse tokens first..first+n-1 of line as numbers into v[]. Returns a wire status. */
-static int job_numbers(const char *line, const uint16_t *st, const uint16_t *ln, unsigned first,
-                       unsigned n, cp_real *v)
+/* ---- the arguments ---- */
+
+/* Parse tokens first..first+n-1 as numbers into v[]. Returns a wire status. */
+static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, cp_real *v)
 {
     unsigned i;
     for (i = 0; i < n; i++) {
-        int s = parse_real(line + st[first + i], ln[first + i], &v[i]);
+        int s = parse_real(t->line + t->st[first + i], t->ln[first + i], &v[i]);
         if (s != CP_ST_OK) {
             return s;
         }
@@ -218,124 +243,172 @@ static int job_numbers(const char *line, const uint16_t *st, const uint16_t *ln,
     return CP_ST_OK;
 }
 
-int job_status_of(int err)
+/* The word after the keyword (the word shapes, at least 2 tokens): a->word, its value and
+ * the tokens it takes (*first, *na, the last word: *ntv), or an unsigned number instead
+ * (*uint). Returns a wire status. */
+static int word_args(const struct job_tokens *t, const struct job_cmd_row *r, struct job_args *a,
+                     unsigned *first, unsigned *na, unsigned *ntv, unsigned *uint)
 {
-    switch (err) {
-    case CP_OK:
-        return CP_ST_OK;
-    case CP_ERR_NONFINITE:
-        return CP_ST_NONFINITE;
-    case CP_ERR_RANGE:
-    case CP_ERR_INVAL:
-        return CP_ST_OUT_OF_RANGE;
-    case CP_ERR_RADIUS:
-        return CP_ST_RADIUS;
-    case CP_ERR_DEGENERATE:
-        return CP_ST_DEGENERATE;
-    case CP_ERR_EMPTY:
-        return CP_ST_EMPTY;
-    case CP_ERR_TOO_MANY:
-        return CP_ST_TOO_MANY;
-    case CP_ERR_TOOL:
-        return CP_ST_TOOL;
-    case CP_ERR_CUSP:
-        return CP_ST_CUSP;
-    case CP_ERR_TOL:
-        return CP_ST_TOL;
-    case CP_ERR_OFF_PLANE:
-        return CP_ST_OFF_PLANE;
-    case CP_ERR_FRENET:
-        return CP_ST_FRENET;
-    case CP_ERR_FRAME_REF:
-        return CP_ST_FRAME_REF;
-    case CP_ERR_SECTION:
-        return CP_ST_SECTION;
-    case CP_ERR_FT_RANGE:
-        return CP_ST_FT_RANGE;
-    case CP_ERR_FOLD:
-        return CP_ST_FOLD;
-    case CP_ERR_TOO_FEW:
-        return CP_ST_TOO_FEW;
-    case CP_ERR_EXPONENT:
-        return CP_ST_EXPONENT;
-    case CP_ERR_COINCIDENT:
-        return CP_ST_COINCIDENT;
-    case CP_ERR_SECTION_PLANE:
-        return CP_ST_SECTION_PLANE;
-    case CP_ERR_AREA_LAW:
-        return CP_ST_AREA_LAW;
-    case CP_ERR_ISOTROPIC:
-        return CP_ST_ISOTROPIC;
-    case CP_ERR_TURN:
-        return CP_ST_TURN;
-    case CP_ERR_TWIST:
-        return CP_ST_TWIST;
-    case CP_ERR_BUFFER:
-        return CP_ST_BUFFER;
-    default:
-        return CP_ST_NUMERIC;
-    }
-}
-
-/* The canal's commands and SURFACE, their arguments checked (job_command). */
-static int canal_command(struct job *j, unsigned c, const struct job_args *a)
-{
-    const cp_real *v = a->v;
-    unsigned i, k = a->sub;
-    uint32_t u = a->u;
-    switch (c) {
-    case KW_CURVE:
-    case KW_RADIUS: {
-        cp_real *dst = c == KW_RADIUS ? j->canal.rp : j->canal.cp;
-        unsigned cap = c == KW_RADIUS ? 4u : 8u;
-        for (i = 0; i < cap; i++) {
-            dst[i] = i < a->na ? v[i] : CP_R(0.0);
-        }
-        if (c == KW_RADIUS) {
-            j->canal.radius = (uint8_t)k;
-            j->have |= JOB_HAVE_RADIUS;
-        } else {
-            if (k == CANAL_ARC || k == CANAL_ELLIPSE) { /* the two angles come last */
-                dst[a->na - 2u] *= CP_DEG2RAD;
-                dst[a->na - 1u] *= CP_DEG2RAD;
-            }
-            j->canal.curve = (uint8_t)k;
-            j->have |= JOB_HAVE_CURVE;
-        }
-        return CP_ST_OK;
-    }
-    case KW_TOOL: /* NONE | BALL r [TIP|CENTRE|CENTER] (u: 0 none, 1 + the option's index) */
-        if (k == 0u) {
-            j->cfg.output = RASTER_OUT_SURFACE;
-            j->cfg.tool_r = CP_R(0.0);
-            return CP_ST_OK;
-        }
-        if (!(v[0] > CP_R(0.0)) || v[0] > CANAL_COORD_MAX) {
-            return CP_ST_OUT_OF_RANGE;
-        }
-        if (u == 4u) { /* not one of the three */
+    a->word = token_word(t, 1u, a->cmd, 0u);
+    if (a->word == JOB_NO_WORD) {
+        if (r->shape != JOB_ARGS_UINT_OR_WORD) {
             return CP_ST_BAD_KEYWORD;
         }
-        j->cfg.output = u > 1u ? RASTER_OUT_CENTRE : RASTER_OUT_TIP;
-        j->cfg.tool_r = v[0];
+        *na = 1u; /* the unsigned number */
+        *uint = 1u;
         return CP_ST_OK;
-    case KW_LINES:
-    case KW_CIRCLES: /* n u0 u1 (k: PATCH) */
-        if (u > CP_MAX_LINES) {
-            return CP_ST_TOO_MANY;
+    }
+    a->value = words[a->word].value;
+    *na = words[a->word].numbers;
+    *first = 2u;
+    if (r->shape == JOB_ARGS_WORD_NUMBERS_OPTION) {
+        if (*na == 0u && t->n > 2u) { /* a word without numbers takes nothing more */
+            return CP_ST_BAD_KEYWORD;
         }
-        if (u == 0u || cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0) ||
-            (v[0] == v[1] && u > 1u)) {
-            return CP_ST_OUT_OF_RANGE;
+        if (t->n == 3u + *na) { /* the option word (its check is the hook's, after ranges) */
+            a->option = token_word(t, t->n - 1u, a->cmd, 1u);
+            if (a->option == JOB_NO_WORD) {
+                a->option = JOB_BAD_WORD;
+            } else {
+                a->option_value = words[a->option].value;
+            }
+            (*ntv)--;
         }
-        j->cfg.mode = c == KW_CIRCLES ? RASTER_CIRCLES : RASTER_LINES;
-        j->cfg.span = (c == KW_CIRCLES && k == 0u) ? RASTER_SPAN_ANGLE : RASTER_SPAN_LINES;
-        j->cfg.n = (uint16_t)u;
-        j->cfg.u0 = v[0] * CP_DEG2RAD;
-        j->cfg.u1 = v[1] * CP_DEG2RAD;
-        j->have |= JOB_HAVE_RASTER;
+    }
+    return CP_ST_OK;
+}
+
+/* Check the arguments of command c as its shape says (enum job_shape: arity, words,
+ * unsigned number, numbers, in that order) into *a. Returns a wire status. */
+static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_args *a)
+{
+    const struct job_cmd_row *r = &cmds[c];
+    unsigned first = 1u, na = 0u, ntv = t->n, uint = 0u;
+    int s = CP_ST_OK;
+    a->cmd = c;
+    a->word = JOB_NO_WORD;
+    a->value = 0u;
+    a->option = JOB_NO_WORD;
+    a->option_value = 0u;
+    a->u = 0u;
+    switch (r->shape) {
+    case JOB_ARGS_NUMBERS:
+        if (t->n < 1u + r->min || t->n > 1u + r->max) {
+            return CP_ST_BAD_ARITY;
+        }
+        na = t->n - 1u;
+        break;
+    case JOB_ARGS_UINT_NUMBERS_OPTION:
+        if (t->n == 3u + r->min && has_options(c)) { /* the option word first */
+            a->option = token_word(t, t->n - 1u, c, 1u);
+            if (a->option == JOB_NO_WORD) {
+                return CP_ST_BAD_KEYWORD;
+            }
+            a->option_value = words[a->option].value;
+            ntv--;
+        }
+        na = 1u + r->min;
+        uint = 1u;
+        break;
+    case JOB_ARGS_ALONE: /* nothing after the keyword (job_line answers RUN before) */
+        break;
+    default: /* a word after the keyword: exactly one token for WORD and UINT_OR_WORD */
+        if (t->n < 2u ||
+            (t->n != 2u && (r->shape == JOB_ARGS_WORD || r->shape == JOB_ARGS_UINT_OR_WORD))) {
+            return CP_ST_BAD_ARITY;
+        }
+        s = word_args(t, r, a, &first, &na, &ntv, &uint);
+        break;
+    }
+    if (s != CP_ST_OK) {
+        return s;
+    }
+    if (ntv != first + na) {
+        return CP_ST_BAD_ARITY;
+    }
+    if (uint) { /* the first argument is an unsigned number */
+        s = parse_uint(t->line + t->st[first], t->ln[first], 0xFFFFFFFFu, &a->u);
+        if (s != CP_ST_OK) {
+            return s;
+        }
+        first++;
+        na--;
+    }
+    a->na = na;
+    return job_numbers(t, first, na, a->v);
+}
+
+/* ---- job.c's own commands: the raster, the output, SURFACE ---- */
+
+/* TOOL NONE | BALL r [TIP|CENTRE|CENTER] */
+static int job_tool(struct job *j, const struct job_args *a)
+{
+    if (a->word == JOB_WORD_TOOL_NONE) {
+        j->cfg.output = (uint8_t)a->value; /* RASTER_OUT_SURFACE */
+        j->cfg.tool_r = CP_R(0.0);
         return CP_ST_OK;
-    case KW_STEPS:
+    }
+    if (!(a->v[0] > CP_R(0.0)) || a->v[0] > CANAL_COORD_MAX) {
+        return CP_ST_OUT_OF_RANGE;
+    }
+    if (a->option == JOB_BAD_WORD) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    /* the option's output, else the word's (BALL: the tip) */
+    j->cfg.output = (uint8_t)(a->option == JOB_NO_WORD ? a->value : a->option_value);
+    j->cfg.tool_r = a->v[0];
+    return CP_ST_OK;
+}
+
+/* LINES | CIRCLES n u0 u1 [PATCH] */
+static int job_raster(struct job *j, const struct job_args *a)
+{
+    const cp_real *v = a->v;
+    uint32_t n = a->u;
+    int circles = a->cmd == JOB_CMD_CIRCLES;
+    if (n > CP_MAX_LINES) {
+        return CP_ST_TOO_MANY;
+    }
+    if (n == 0u || cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0) ||
+        (v[0] == v[1] && n > 1u)) {
+        return CP_ST_OUT_OF_RANGE;
+    }
+    j->cfg.mode = circles ? RASTER_CIRCLES : RASTER_LINES;
+    /* PATCH: between the lines that start at u0, u1; CIRCLES alone: the angles u0..u1 */
+    j->cfg.span = a->option != JOB_NO_WORD ? (uint8_t)a->option_value
+                  : circles                ? RASTER_SPAN_ANGLE
+                                           : RASTER_SPAN_LINES;
+    j->cfg.n = (uint16_t)n;
+    j->cfg.u0 = v[0] * CP_DEG2RAD;
+    j->cfg.u1 = v[1] * CP_DEG2RAD;
+    j->have |= JOB_HAVE_RASTER;
+    return CP_ST_OK;
+}
+
+/* SURFACE <model>: the model's geometry starts afresh (the union holds one model; the
+ * canal's and the raster's settings and have bits stay) */
+static int job_surface(struct job *j, const struct job_args *a)
+{
+    if (!path_has(a->value)) {
+        return CP_ST_BAD_KEYWORD;
+    }
+    model_defaults(a->value, &j->geom);
+    j->kind = (uint8_t)a->value;
+    return CP_ST_OK;
+}
+
+/* The commands of owner JOB, their arguments checked (job_args_of). */
+static int job_own_command(struct job *j, const struct job_args *a)
+{
+    const cp_real *v = a->v;
+    uint32_t u = a->u;
+    switch (a->cmd) {
+    case JOB_CMD_TOOL:
+        return job_tool(j, a);
+    case JOB_CMD_LINES:
+    case JOB_CMD_CIRCLES:
+        return job_raster(j, a);
+    case JOB_CMD_STEPS:
         if (u > CP_MAX_STEPS) {
             return CP_ST_TOO_MANY;
         }
@@ -345,44 +418,52 @@ static int canal_command(struct job *j, unsigned c, const struct job_args *a)
         j->cfg.steps = (uint16_t)u;
         j->cfg.tol = CP_R(0.0);
         return CP_ST_OK;
-    case KW_TOL:
+    case JOB_CMD_TOL:
         if (v[0] < CP_R(0.01) || v[0] > CP_R(10000.0)) {
             return CP_ST_OUT_OF_RANGE;
         }
         j->cfg.tol = v[0] * CP_R(0.001);
         j->cfg.steps = 0;
         return CP_ST_OK;
-    case KW_FEED:
+    case JOB_CMD_FEED:
         if (v[0] < CP_R(0.0) || v[0] > JOB_FEED_MAX || (v[0] > CP_R(0.0) && v[0] < JOB_FEED_MIN)) {
             return CP_ST_OUT_OF_RANGE;
         }
         j->feed = v[0];
         return CP_ST_OK;
-    case KW_RXBUF:
+    case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
             return CP_ST_OUT_OF_RANGE;
         }
         j->rxbuf = (uint16_t)u;
         return CP_ST_OK;
-    case KW_FORMAT:
-        j->format = (uint8_t)k; /* JOB_GCODE, JOB_FRAMES */
+    case JOB_CMD_FORMAT:
+        j->format = (uint8_t)a->value; /* enum job_format */
         return CP_ST_OK;
-    case KW_CHECKSUM:
-        j->checksum = (uint8_t)k;
+    case JOB_CMD_CHECKSUM:
+        j->checksum = (uint8_t)a->value;
         return CP_ST_OK;
-    default: /* KW_JOB: SURFACE <k> */
-        if (need[k] == 0u) {
-            return CP_ST_BAD_KEYWORD;
-        }
-        if (k != PATH_CANAL) {
-            /* that model's geometry starts afresh (the union holds one model) */
-            j->have &= (uint16_t)(JOB_HAVE_ALL);
-            model_defaults(k, &j->geom);
-        }
-        j->kind = (uint8_t)k;
-        return CP_ST_OK;
+    case JOB_CMD_SURFACE:
+        return job_surface(j, a);
+    default: /* not JOB's (unreachable: job_line calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
     }
 }
+
+/* The hook of the command's owner. */
+static int owner_command(struct job *j, unsigned owner, struct job_args *a)
+{
+    switch (owner) {
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    PATH_IF(WITH, case JOB_OWNER_##NAME : return job_##name##_command(j, a);)
+#include "models.def"
+#undef CP_MODEL
+    default: /* JOB_OWNER_JOB */
+        return job_own_command(j, a);
+    }
+}
+
+/* ---- the lines ---- */
 
 int job_command(struct job *j, const char *line, size_t len)
 {
@@ -390,10 +471,8 @@ int job_command(struct job *j, const char *line, size_t len)
      * RESUME's argument; proto.c calls job_line, so this costs the image nothing) */
     uint16_t st, ln;
     uint32_t first;
-    char lead;
-    unsigned c = parse_split(line, len, &st, &ln, 1u) > 0u ? job_word(line + st, ln, 0u, &lead)
-                                                            : 0u;
-    if (c == KW_RUN || c == KW_RESUME) {
+    unsigned c = parse_split(line, len, &st, &ln, 1u) > 0u ? find_cmd(line + st, ln) : JOB_CMDS;
+    if (c < (unsigned)JOB_CMDS && cmds[c].owner == JOB_OWNER_PROTO) {
         return JOB_NOT_MINE;
     }
     return job_line(j, line, len, &first);
@@ -401,110 +480,39 @@ int job_command(struct job *j, const char *line, size_t len)
 
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
 {
-    uint16_t st[JOB_MAX_TOKENS], ln[JOB_MAX_TOKENS];
-    unsigned nt = parse_split(line, len, st, ln, JOB_MAX_TOKENS);
+    struct job_tokens t;
     struct job_args a;
-    unsigned c, m, first = 1u, na, uint = 0u, ntv = nt;
-    char lead, d;
+    const struct job_cmd_row *r;
+    unsigned c;
     int s;
-    if (nt == 0u) {
+    t.line = line;
+    t.n = parse_split(line, len, t.st, t.ln, JOB_MAX_TOKENS);
+    /* (parse_split stored at most JOB_MAX_TOKENS tokens: n beyond that is error:3) */
+    c = t.n > 0u ? find_cmd(line + t.st[0], t.ln[0]) : JOB_CMDS;
+    if (c == JOB_CMDS || !owner_built(cmds[c].owner)) { /* no job command */
         return JOB_NOT_MINE;
     }
-    /* (parse_split stored at most JOB_MAX_TOKENS tokens: nt beyond that is error:3) */
-    c = job_word(line + st[0], ln[0], 0u, &lead);
-    m = model_of(c);
-    if (lead == '\0' || need[m] == 0u) { /* no job command */
-        return JOB_NOT_MINE;
-    }
-    if (lead == '-') { /* RUN: alone on its line (the line is trimmed) */
+    r = &cmds[c];
+    if (r->shape == JOB_ARGS_ALONE) { /* RUN: alone on its line (the line is trimmed) */
         *first_k = 0u;
-        return nt == 1u ? JOB_RUN : JOB_NOT_MINE;
+        return t.n == 1u ? JOB_RUN : JOB_NOT_MINE;
     }
-    if (nt > JOB_MAX_TOKENS) {
+    if (t.n > JOB_MAX_TOKENS) {
         return CP_ST_BAD_ARITY;
     }
-    if (m != PATH_CANAL && j->kind != m) {
+    if (r->surface == JOB_SURFACE_OWN && j->kind != r->owner) {
         return CP_ST_WRONG_SURFACE;
     }
-    a.sub = 0;
-    a.u = 0;
-    na = (unsigned)(lead - '0'); /* 0-9: that many numbers */
-    if (lead == ':') {            /* POINT x y [z] */
-        if (nt != 3u && nt != 4u) {
-            return CP_ST_BAD_ARITY;
-        }
-        na = nt - 1u;
-    } else if (lead == ';') { /* LINES|CIRCLES n u0 u1 [PATCH] */
-        if (c == KW_CIRCLES && nt == 5u) {
-            if (!parse_is(line + st[4], ln[4], "PATCH")) {
-                return CP_ST_BAD_KEYWORD;
-            }
-            a.sub = 1u;
-            ntv = 4u;
-        }
-        na = 3u;
-        uint = 1u;
-    } else if (lead >= 'K') { /* K, T, U, W: a word from list 1 + c first */
-        if (nt < 2u || (lead >= 'U' && nt != 2u)) {
-            return CP_ST_BAD_ARITY;
-        }
-        a.sub = job_word(line + st[1], ln[1], 1u + c, &d);
-        na = (unsigned)(d - '0');
-        first = 2u;
-        if (d == '\0') { /* none of them: U takes an unsigned number instead */
-            if (lead != 'U') {
-                return CP_ST_BAD_KEYWORD;
-            }
-            na = 1u;
-            first = 1u;
-            uint = 1u;
-        } else if (lead == 'T') { /* TOOL NONE alone; TOOL BALL r [option] */
-            if (a.sub == 0u && nt > 2u) {
-                return CP_ST_BAD_KEYWORD;
-            }
-            if (nt == 4u) { /* the option: 1 + its index among the three, else 4 */
-                ntv = 3u;
-                a.u = 1u + parse_kw(line + st[3], ln[3], "TIP\0CENTRE\0CENTER", 3u);
-            }
-        }
-    }
-    if (ntv != first + na) {
-        return CP_ST_BAD_ARITY;
-    }
-    if (uint) { /* the first argument is an unsigned number */
-        s = parse_uint(line + st[first], ln[first], 0xFFFFFFFFu, &a.u);
-        if (s != CP_ST_OK) {
-            return c == KW_RESUME && s == CP_ST_OUT_OF_RANGE ? CP_ST_RESUME_RANGE : s;
-        }
-        if (c == KW_RESUME) {
+    s = job_args_of(&t, (enum job_cmd)c, &a);
+    if (c == PROTO_CMD_RESUME) { /* RESUME k: the run from point k (k above 2^32 - 1: 21) */
+        if (s == CP_ST_OK) {
             *first_k = a.u;
             return JOB_RUN;
         }
-        first++;
-        na--;
+        return s == CP_ST_OUT_OF_RANGE ? CP_ST_RESUME_RANGE : s;
     }
-    s = job_numbers(line, st, ln, first, na, a.v);
     if (s != CP_ST_OK) {
         return s;
     }
-    a.na = na;
-    switch (m) {
-#if PATH_HAVE_GSR
-    case PATH_GSR:
-        a.cmd = c - KW_GSR;
-        return job_gsr_command(j, &a);
-#endif
-#if PATH_HAVE_CHANNEL
-    case PATH_CHANNEL:
-        a.cmd = c - KW_CHANNEL;
-        return job_channel_command(j, &a);
-#endif
-#if PATH_HAVE_DRC
-    case PATH_DRC:
-        a.cmd = c - KW_DRC;
-        return job_drc_command(j, &a);
-#endif
-    default:
-        return canal_command(j, c, &a);
-    }
+    return owner_command(j, r->owner, &a);
 }

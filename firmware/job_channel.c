@@ -7,65 +7,90 @@
  *   AXES x1 x2 x3 z1 z2 z3    replace the last section's orientation by explicit rows: local x
  *                             axis (the a axis) and section normal (unit, orthogonal, 1e-4)
  *   SECTIONS CLEAR            forget the sections
- * job.c checks the arity (error:3), numbers (4/5) and words (9). Each command checks its
- * section at once (channel_section_check: error:6 range, 28 a or
- * b <= 0, 32 n < 1, 36 a = b with n != 2); SECTION beyond CP_MAX_SECTIONS sections answers
- * error:14 (too many), AXES before any SECTION error:31 (too few: nothing to apply to); RUN
- * checks the geometry (channel_path_init).
+ * job.c checks the arity (error:3), numbers (4/5) and words (9) (commands.def). Each command checks
+ * its section at once (channel_section_check: error:6 range, 28 a or b <= 0, 32 n < 1, 36 a = b
+ * with n != 2); SECTION beyond CP_MAX_SECTIONS sections answers error:14 (too many), AXES before
+ * any SECTION error:31 (too few: nothing to apply to); RUN checks the geometry (channel_path_init).
  */
 #include "job.h"
-
-#define JOB_HAVE_SECTION JOB_HAVE_CHANNEL_SECTION
-
-CP_STATIC_ASSERT((JOB_HAVE_SECTION & ~JOB_HAVE_CHANNEL_MASK) == 0u, channel_bit_in_mask);
 
 void job_channel_defaults(union path_geom *g)
 {
     g->channel.count = 0u;
 }
 
-int job_channel_command(struct job *j, struct job_args *a)
+int job_channel_ready(const struct job *j)
+{
+    return j->geom.channel.count > 0u && (j->have & JOB_HAVE_RASTER) != 0u;
+}
+
+/* Store section s (checked: channel_section_check) as section i (the next one or the
+ * last). Returns a wire status. */
+static int channel_store(struct job *j, const struct channel_section *s, unsigned i)
 {
     struct channel_cfg *g = &j->geom.channel;
-    struct channel_section s;
-    cp_real *sv = (cp_real *)&s; /* 12 reals (static assert in channel.c) */
-    unsigned c = a->cmd, i;
-    int st;
-    if (c == 2u) { /* SECTIONS CLEAR */
-        g->count = 0u;
-        j->have &= (uint16_t)~JOB_HAVE_SECTION;
-        return CP_ST_OK;
+    int st = channel_section_check(s);
+    if (st != CP_OK) {
+        return cp_status_of(st);
     }
-    if (c == 0u && g->count >= CP_MAX_SECTIONS) {
+    g->s[i] = *s;
+    g->count = (uint8_t)(i + 1u);
+    return CP_ST_OK;
+}
+
+/* SECTION a b n cx cy cz psi theta phi: a new section. */
+static int channel_section(struct job *j, const cp_real *v)
+{
+    struct channel_section s;
+    unsigned i;
+    if (j->geom.channel.count >= CP_MAX_SECTIONS) {
         return CP_ST_TOO_MANY;
     }
-    /* SECTION a b n centre at 0..5 and the angles at 6..8 (the x row, which
-     * channel_euler then writes; |angle| <= 360); AXES the rows x, z at 6..11 */
-    for (i = 0; i < a->na; i++) {
-        sv[6u * c + i] = a->v[i];
-        if (c == 0u && i >= 6u && cp_fabs(a->v[i]) > CP_R(360.0)) {
+    for (i = 6u; i < 9u; i++) { /* the angles */
+        if (cp_fabs(v[i]) > CP_R(360.0)) {
             return CP_ST_OUT_OF_RANGE;
         }
     }
-    if (c == 0u) { /* SECTION: a b n, centre, angles */
-        channel_euler(&s, sv[6] * CP_DEG2RAD, sv[7] * CP_DEG2RAD, sv[8] * CP_DEG2RAD,
-                      CHANNEL_ORDER_SPIN_FIRST);
-    } else { /* AXES: rows x, z of the last section */
-        if (g->count == 0u) {
-            return CP_ST_TOO_FEW; /* AXES needs a SECTION to apply to */
-        }
-        for (i = 0; i < 6u; i++) {
-            sv[i] = ((const cp_real *)&g->s[g->count - 1u])[i];
-        }
+    s.a = v[0];
+    s.b = v[1];
+    s.n = v[2];
+    s.c.x = v[3];
+    s.c.y = v[4];
+    s.c.z = v[5];
+    channel_euler(&s, v[6] * CP_DEG2RAD, v[7] * CP_DEG2RAD, v[8] * CP_DEG2RAD,
+                  CHANNEL_ORDER_SPIN_FIRST); /* the rows x and z */
+    return channel_store(j, &s, j->geom.channel.count);
+}
+
+/* AXES x1 x2 x3 z1 z2 z3: the last section's rows x and z. */
+static int channel_axes(struct job *j, const cp_real *v)
+{
+    const struct channel_cfg *g = &j->geom.channel;
+    struct channel_section s;
+    if (g->count == 0u) {
+        return CP_ST_TOO_FEW; /* AXES needs a SECTION to apply to */
     }
-    st = channel_section_check(&s);
-    if (st != CP_OK) {
-        return job_status_of(st);
+    s = g->s[g->count - 1u];
+    s.x.x = v[0];
+    s.x.y = v[1];
+    s.x.z = v[2];
+    s.z.x = v[3];
+    s.z.y = v[4];
+    s.z.z = v[5];
+    return channel_store(j, &s, g->count - 1u);
+}
+
+int job_channel_command(struct job *j, struct job_args *a)
+{
+    switch (a->cmd) {
+    case CHANNEL_CMD_SECTION:
+        return channel_section(j, a->v);
+    case CHANNEL_CMD_AXES:
+        return channel_axes(j, a->v);
+    case CHANNEL_CMD_SECTIONS_CLEAR:
+        j->geom.channel.count = 0u;
+        return CP_ST_OK;
+    default: /* not CHANNEL's (unreachable: job.c calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
     }
-    if (c == 0u) {
-        g->count++;
-    }
-    g->s[g->count - 1u] = s;
-    j->have |= JOB_HAVE_SECTION;
-    return CP_ST_OK;
 }

@@ -11,13 +11,12 @@
  *                      OFF (default): the thickened curve itself. EDGE ON needs RADIUS
  *                      (RUN without it: error:10, job_ready); LINES defaults to one line
  *                      at u = 0 (the contact curve, where the fillet meets the plane)
- * Arguments are checked at once (error:3 arity, 4/5 numbers, 9 keyword by job.c, 6 range); the
- * geometry at RUN (drc_path_init: error:31 fewer than 3 points, 33 coincident, 37 turn
+ * Arguments are checked at once (error:3 arity, 4/5 numbers, 9 keyword by job.c from commands.def,
+ * 6 range); the geometry at RUN (drc_path_init: error:31 fewer than 3 points, 33 coincident, 37
+ * turn
  * >= 90 deg, 25 a point with z != 0 (the stream is planar), 17 TOL unreachable, ...).
  */
 #include "job.h"
-
-CP_STATIC_ASSERT((JOB_HAVE_DRC_POINTS & ~JOB_HAVE_DRC_MASK) == 0u, drc_bit_in_mask);
 
 void job_drc_defaults(union path_geom *g)
 {
@@ -26,13 +25,21 @@ void job_drc_defaults(union path_geom *g)
     g->drc.edge = 0u;
 }
 
+int job_drc_ready(const struct job *j)
+{
+    /* EDGE ON is a fillet: without a RADIUS law the job is incomplete (error:10); LINES
+     * may default (one line, u = 0) */
+    const struct drc_cfg *g = &j->geom.drc;
+    return g->n > 0u && (g->edge == 0u || (j->have & JOB_HAVE_RADIUS) != 0u);
+}
+
 int job_drc_command(struct job *j, struct job_args *a)
 {
     struct drc_cfg *g = &j->geom.drc;
     cp_real *v = a->v;
     unsigned i;
     switch (a->cmd) {
-    case 0u: /* POINT x y [z] */
+    case DRC_CMD_POINT: /* x y [z] */
         if (a->na == 2u) {
             v[2] = CP_R(0.0);
         }
@@ -48,21 +55,24 @@ int job_drc_command(struct job *j, struct job_args *a)
         g->p[g->n].y = v[1];
         g->p[g->n].z = v[2];
         g->n++;
-        j->have |= JOB_HAVE_DRC_POINTS;
-        break;
-    case 1u: /* POINTS CLEAR */
+        return CP_ST_OK;
+    case DRC_CMD_POINTS_CLEAR:
         g->n = 0u;
-        j->have &= (uint16_t)~JOB_HAVE_DRC_POINTS;
-        break;
-    case 2u: /* THICKEN AUTO (sub 0) | K */
-        if (a->sub != 0u && a->u > CP_MAX_PASSES) {
+        return CP_ST_OK;
+    case DRC_CMD_THICKEN: /* AUTO (its value: DRC_PASSES_AUTO) | K */
+        if (a->word == JOB_WORD_THICKEN_AUTO) {
+            g->passes = (uint8_t)a->value;
+            return CP_ST_OK;
+        }
+        if (a->u > CP_MAX_PASSES) {
             return CP_ST_TOO_MANY;
         }
-        g->passes = a->sub == 0u ? DRC_PASSES_AUTO : (uint8_t)a->u;
-        break;
-    default: /* EDGE OFF | ON */
-        g->edge = (uint8_t)a->sub;
-        break;
+        g->passes = (uint8_t)a->u;
+        return CP_ST_OK;
+    case DRC_CMD_EDGE: /* OFF | ON: 0 | 1 */
+        g->edge = (uint8_t)a->value;
+        return CP_ST_OK;
+    default: /* not DRC's (unreachable: job.c calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
     }
-    return CP_ST_OK;
 }

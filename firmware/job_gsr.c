@@ -11,14 +11,18 @@
  *   FRAME FIXED|FRENET | FRAME N0|RMF x y z
  *   FORM RATIONAL|TRIG               section points (default RATIONAL)
  * Arity error:3, numbers error:4/5, keyword error:9 (job.c checks these: the keywords,
- * words and number counts are in its table), range error:6 (|a_i|, |b|, |c|, |x|, ref
+ * words and number counts are rows of commands.def), range error:6 (|a_i|, |b|, |c|, |x|, ref
  * <= 1e4 mm, |w| <= 23040 deg, ref != 0). The geometry itself is checked by RUN.
  */
 #include "job.h"
 
-/* cfg.set bits: Bezier points 0..3, radii N and B */
-#define SET_BEZIER 0x0Fu
-#define SET_RADII 0x30u
+/* cfg.set bits (the protocol's bookkeeping, ignored by gsr_init): what RUN needs */
+#define SET_BEZIER 0x0Fu  /* CENTER P<i>: 1 << i, all four make the Bezier centre */
+#define SET_RADII_N 0x10u /* RADII N */
+#define SET_RADII_B 0x20u /* RADII B */
+#define SET_FRAME 0x40u   /* FRAME */
+#define SET_CENTER 0x80u  /* a complete centre: CENTER X|Y|Z, or all four P<i> */
+#define SET_ALL (SET_CENTER | SET_RADII_N | SET_RADII_B | SET_FRAME)
 
 /* Zero the 3 functions m[0..2]. */
 static void zero3(cp_real (*m)[GSR_FN])
@@ -42,11 +46,50 @@ void job_gsr_defaults(union path_geom *g)
     c->set = 0;
 }
 
+int job_gsr_ready(const struct job *j)
+{
+    return (j->geom.gsr.set & SET_ALL) == SET_ALL && (j->have & JOB_HAVE_RASTER) != 0u;
+}
+
+/* CENTER X|Y|Z (a coordinate function) or P0..P3 (a control point of the Bezier form). */
+static unsigned center_form(enum job_word w)
+{
+    return w == JOB_WORD_CENTER_P0 || w == JOB_WORD_CENTER_P1 || w == JOB_WORD_CENTER_P2 ||
+                   w == JOB_WORD_CENTER_P3
+               ? GSR_CENTRE_BEZIER
+               : GSR_CENTRE_POLY;
+}
+
+/* CENTER X|Y|Z a0 .. w (k: the axis) or P0..P3 x y z (k: the point). */
+static void gsr_center(struct gsr_cfg *c, enum job_word w, unsigned k, const cp_real *v,
+                       unsigned na)
+{
+    unsigned form = center_form(w), i;
+    if (form != c->centre) { /* the other form: start afresh */
+        zero3(c->c);
+        c->centre = (uint8_t)form;
+        c->set &= (uint8_t) ~(SET_BEZIER | SET_CENTER);
+    }
+    for (i = 0; i < na; i++) {
+        if (form == GSR_CENTRE_BEZIER) {
+            c->c[i][k] = v[i]; /* coordinate i of point k */
+        } else {
+            c->c[k][i] = v[i]; /* number i of axis k */
+        }
+    }
+    if (form == GSR_CENTRE_BEZIER) {
+        c->set |= (uint8_t)(1u << k);
+    }
+    if (form == GSR_CENTRE_POLY || (c->set & SET_BEZIER) == SET_BEZIER) {
+        c->set |= SET_CENTER;
+    }
+}
+
 int job_gsr_command(struct job *j, struct job_args *a)
 {
-    struct gsr_cfg *c;
+    struct gsr_cfg *c = &j->geom.gsr;
     cp_real *v = a->v;
-    unsigned cmd = a->cmd, k = a->sub, na = a->na, i, bz, bit, mask, have;
+    unsigned k = a->value, na = a->na, i;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
             return CP_ST_OUT_OF_RANGE;
@@ -55,35 +98,21 @@ int job_gsr_command(struct job *j, struct job_args *a)
     if (na == GSR_FN) {
         v[GSR_W] *= CP_DEG2RAD;
     }
-    c = &j->geom.gsr;
-    bz = k >= 3u;
-    bit = 0u;  /* c->set bit of this command */
-    mask = 0u; /* c->set bits that complete the part */
-    have = 0u; /* its j->have bit, once complete */
-    switch (cmd) {
-    case 0u:                  /* CENTER */
-        if (bz != c->centre) { /* the other form: start afresh */
-            zero3(c->c);
-            c->centre = (uint8_t)bz;
-            c->set &= (uint8_t)~SET_BEZIER;
-            j->have &= (uint16_t)~JOB_HAVE_GSR_CENTER;
-        }
-        for (i = 0; i < na; i++) {
-            c->c[bz ? i : k][bz ? k - 3u : i] = v[i];
-        }
-        bit = bz << (k & 3u); /* P0..P3 (k = 3..6): one bit each, all four needed */
-        mask = bz ? SET_BEZIER : 0u;
-        have = JOB_HAVE_GSR_CENTER;
-        break;
-    case 1u: /* RADII */
+    switch (a->cmd) {
+    case GSR_CMD_CENTER:
+        gsr_center(c, a->word, k, v, na);
+        return CP_ST_OK;
+    case GSR_CMD_RADII: /* k: f_N, f_B, f_t (which has a default) */
         for (i = 0; i < GSR_FN; i++) {
             c->r[k][i] = v[i];
         }
-        bit = (0x10u << k) & SET_RADII; /* N and B needed */
-        mask = SET_RADII;
-        have = JOB_HAVE_GSR_RADII;
-        break;
-    case 2u: /* FRAME */
+        if (a->word == JOB_WORD_RADII_N) {
+            c->set |= SET_RADII_N;
+        } else if (a->word == JOB_WORD_RADII_B) {
+            c->set |= SET_RADII_B;
+        }
+        return CP_ST_OK;
+    case GSR_CMD_FRAME: /* k: enum gsr_frame_kind; N0 and RMF with their reference */
         if (na != 0u) {
             if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > CP_R(0.0))) {
                 return CP_ST_OUT_OF_RANGE;
@@ -93,15 +122,12 @@ int job_gsr_command(struct job *j, struct job_args *a)
             c->ref.z = v[2];
         }
         c->frame = (uint8_t)k;
-        have = JOB_HAVE_GSR_FRAME;
-        break;
-    default: /* FORM */
+        c->set |= SET_FRAME;
+        return CP_ST_OK;
+    case GSR_CMD_FORM: /* k: enum gsr_section_kind */
         c->section = (uint8_t)k;
-        break;
+        return CP_ST_OK;
+    default: /* not GSR's (unreachable: job.c calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
     }
-    c->set |= (uint8_t)bit;
-    if ((c->set & mask) == mask) {
-        j->have |= (uint16_t)have;
-    }
-    return CP_ST_OK;
 }

@@ -6,68 +6,71 @@
  * the conventions of canal_path.h (zigzag lines, link points, fixed counts decided
  * at init, seek(k) reproducing point k bit for bit). The raster request (mode,
  * n, u0, u1, steps/tol, link, tool, output) is the job's `struct raster_cfg`
- * for every model (raster.h); the model's geometry is its member of `union path_geom`.
- * Every iterator starts with a `struct raster_head head` (mode, n, steps, link, count,
- * k), which the stream header and path_pos read.
+ * for every model; the canal model also takes its geometry from it (cfg.surf),
+ * the other models from `union path_geom`.
  *
- * Models (SURFACE command, docs/PROTOCOL.md):
+ * Models: firmware/models.def, one row each (the SURFACE word, the module prefix, the
+ * compile-time switch). From it come enum path_kind, the iterator union of struct path,
+ * the dispatch of path.c, the job's per-model hooks (job.c) and the $I model list:
  *   PATH_CANAL    canal surface touching the floor along a plane curve (seed 000)
  *   PATH_GSR      generalized surface of revolution (seed 003)        [issue 7]
  *   PATH_CHANNEL  channel surface from cross-sections (seed 002)      [issue 5]
  *   PATH_DRC      discretely represented curve, thickened (seed 001)  [issue 6]
  * A kind whose model is not compiled in is refused by SURFACE (error:9).
  *
- * HOW TO ADD A MODEL <m> (kind PATH_<M>):
- *   1. firmware/<m>.h: struct <m>_cfg (geometry, plain data) and an iterator
+ * HOW TO ADD A MODEL <m> (kind PATH_<M>): one row in each table, and its own files:
+ *   1. firmware/models.def: CP_MODEL(<M>, <m>, CP_WITH_<M>, "<WORD>") (appended), and
+ *      CP_WITH_<M> in cp_config.h.
+ *   2. firmware/<m>.h, <m>.c: struct <m>_cfg (geometry, plain data) and an iterator
  *      struct <m>_path with
  *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
  *                               const struct raster_cfg *raster);
  *        uint32_t <m>_path_count(const struct <m>_path *);
  *        int      <m>_path_next(struct <m>_path *, struct raster_pt *);
  *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
- *      whose first member is `struct raster_head head` (raster.h: mode, n, steps,
- *      link, count, k; <m>_path_seek via raster_seek).
- *   2. here: include <m>.h, add the cfg to union path_geom and the iterator to
- *      struct path's union, and set PATH_HAVE_<M> to 1.
- *   3. path.c: one case in each switch (init, count, next, seek, info).
- *   4. firmware/job_<m>.c: int job_<m>_command(struct job *, struct job_args *)
- *      (job.h) and a defaults function; in job.c its keywords, their words and
- *      number counts in the `words` table (and KW_<M>), one case each in
- *      job_command()'s hook switch and model_defaults(), and need[PATH_<M>] = the
- *      have bits RUN needs (job.h JOB_HAVE_<M>_MASK). Its cp_err codes map to wire
- *      codes (appended to cp_status.def) in job_status_of().
- *   5. docs/PROTOCOL.md: the commands; host_sim: a judge of the model's stream.
+ *      and the fields count (0 after a failed init), k (points emitted), n, steps,
+ *      link, mode. Include <m>.h below (union path_geom and struct path follow).
+ *   3. firmware/job_<m>.c: job_<m>_command, job_<m>_defaults, job_<m>_ready (job.h
+ *      declares them from the row); its commands as rows of firmware/commands.def
+ *      (OWNER <M>, SURFACE OWN).
+ *   4. its cp_err codes (cp_types.h): rows appended to cp_status.def (the FROM column).
+ *   5. docs/PROTOCOL.md: the commands; tests/ref_<m>.c; host_sim/judge_<m>.c.
  */
 #ifndef PATH_H
 #define PATH_H
 
-#include "raster.h"
 #include "canal_path.h"
 #include "channel.h"
 #include "gsr.h"
 #include "drc.h"
 
+/* PATH_IF(WITH, tokens): the tokens when WITH (models.def's column: the literal 0 or 1,
+ * cp_config.h checks) is 1, nothing when it is 0. The rows of a model that is not
+ * compiled in thus vanish: no call, no stack edge, its code dropped by --gc-sections. */
+#define PATH_IF(with, ...) PATH_IF_(with, __VA_ARGS__)
+#define PATH_IF_(with, ...) PATH_IF_##with(__VA_ARGS__)
+#define PATH_IF_0(...)
+#define PATH_IF_1(...) __VA_ARGS__
+
 enum path_kind {
-    PATH_CANAL = 0,
-    PATH_GSR = 1,
-    PATH_CHANNEL = 2,
-    PATH_DRC = 3,
-    PATH_KINDS = 4
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_##NAME,
+#include "models.def"
+#undef CP_MODEL
+    PATH_KINDS
 };
 
-/* 1 when the model is compiled in (SURFACE accepts it): cp_config.h CP_WITH_<M>.
- * The types stay declared either way (struct layouts do not depend on the choice);
- * only path.c and job.c stop referring to the model, so --gc-sections drops its code. */
+/* 1 when the model is compiled in (cp_config.h CP_WITH_<M>; for tests: the firmware
+ * reads models.def's WITH column, path_has()). The types stay declared either way
+ * (struct layouts do not depend on the choice). */
 #define PATH_HAVE_GSR CP_WITH_GSR
 #define PATH_HAVE_CHANNEL CP_WITH_CHANNEL
 #define PATH_HAVE_DRC CP_WITH_DRC
 
-/* Geometry of the models (the one of the path's kind). */
+/* The geometry of the model of `kind` (the job's SURFACE): member <name> of models.def. */
 union path_geom {
-    struct canal_cfg canal;
-    struct channel_cfg channel;
-    struct gsr_cfg gsr;
-    struct drc_cfg drc;
+#define CP_MODEL(NAME, name, WITH, WORD) struct name##_cfg name;
+#include "models.def"
+#undef CP_MODEL
 };
 
 /* What the stream header tells the host (BEGIN frame, [RUN:...] line). */
@@ -83,21 +86,23 @@ struct path {
     /* the iterator first, at offset 0 (its hot fields stay at Thumb's short load/store
      * offsets when reached through the path), then the header */
     union {
-        struct canal_path canal;
-        struct channel_path channel;
-        struct gsr_path gsr;
-        struct drc_path drc;
+#define CP_MODEL(NAME, name, WITH, WORD) struct name##_path name;
+#include "models.def"
+#undef CP_MODEL
     } u;
     uint8_t kind;          /* enum path_kind of the initialised iterator */
     struct path_info info; /* valid after a successful path_init */
 };
 
-/* Initialise the iterator of model `kind` on the raster in `raster` and the geometry
- * geom->(the model's member).
- * Errors: CP_ERR_INVAL for a kind that is not compiled in, else the model's init
- * codes (canal_path_init for the canal). On error p->info.count is 0. */
+/* Initialise the iterator of model `kind` on the raster (and, for the canal, the
+ * geometry) in `raster` and the geometry in `geom` (the job's union, for every kind).
+ * Errors: CP_ERR_INVAL for a kind that is not compiled in, or raster or geom NULL, else
+ * the model's init codes (canal_path_init for the canal). On error p->info.count is 0. */
 CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
                             const union path_geom *geom);
+
+/* 1 when model `kind` (enum path_kind) is compiled in (models.def WITH), else 0. */
+int path_has(unsigned kind);
 
 /* Total number of points (0 before a successful init). */
 uint32_t path_count(const struct path *p);

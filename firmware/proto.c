@@ -16,7 +16,7 @@
 #define RT_ABORT 0x18
 
 static const char *const status_texts[CP_ST_END_] = {
-#define CP_STATUS(name, num, text) [num] = text,
+#define CP_STATUS(name, num, text, from) [num] = text,
 #include "cp_status.def"
 #undef CP_STATUS
 };
@@ -183,7 +183,7 @@ static int run_start(struct proto *p, uint32_t first)
     job_geom_fill(&p->job);
     err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
     if (err != CP_OK) {
-        return job_status_of(err);
+        return cp_status_of(err);
     }
     if (first >= path_count(&p->path)) {
         return CP_ST_RESUME_RANGE;

@@ -13,7 +13,7 @@
 static const char *link_status_text(int code)
 {
     switch (code) {
-#define CP_STATUS(name, num, text) \
+#define CP_STATUS(name, num, text, from) \
     case num:                      \
         return text;
 #include "cp_status.def"

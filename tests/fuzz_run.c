@@ -51,7 +51,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
  * firmware's instrumented cp_status_text (as in fuzz_cmd), and its table is checked
  * too. */
 static const char *const status_text[CP_ST_END_] = {
-#define CP_STATUS(name, code, text) [code] = text,
+#define CP_STATUS(name, code, text, from) [code] = text,
 #include "cp_status.def"
 #undef CP_STATUS
 };

@@ -581,7 +581,7 @@ int test_channel_job(void)
     CHECK_EQ_INT(job_ready(&j), CP_ST_NO_JOB);
     CHECK_EQ_INT(cmd(&j, "SECTION 4 3 3 6 3.5 8 225 22.5 15"), CP_ST_OK);
     CHECK_EQ_INT(path_init(&p, j.kind, &j.cfg, &j.geom), CP_ERR_TOO_FEW);
-    CHECK_EQ_INT(job_status_of(CP_ERR_TOO_FEW), CP_ST_TOO_FEW);
+    CHECK_EQ_INT(cp_status_of(CP_ERR_TOO_FEW), CP_ST_TOO_FEW);
     CHECK_EQ_INT(cmd(&j, "SURFACE CANAL"), CP_ST_OK);
     CHECK_EQ_INT(cmd(&j, "SECTIONS CLEAR"), CP_ST_WRONG_SURFACE);
     return 0;

@@ -42,6 +42,120 @@ static void pump(struct proto *p)
     }
 }
 
+/* cp_status_of: the FROM column of cp_status.def, CP_ERR_INVAL as OUT_OF_RANGE and the
+ * codes no row names as NUMERIC (the mapping job_status_of had, case by case). */
+int test_status_of(void)
+{
+    static const struct {
+        int err, st;
+    } map[] = {
+        {CP_OK, CP_ST_OK},
+        {CP_ERR_INVAL, CP_ST_OUT_OF_RANGE},
+        {CP_ERR_NONFINITE, CP_ST_NONFINITE},
+        {CP_ERR_RANGE, CP_ST_OUT_OF_RANGE},
+        {CP_ERR_RADIUS, CP_ST_RADIUS},
+        {CP_ERR_DEGENERATE, CP_ST_DEGENERATE},
+        {CP_ERR_EMPTY, CP_ST_EMPTY},
+        {CP_ERR_TOO_MANY, CP_ST_TOO_MANY},
+        {CP_ERR_TOOL, CP_ST_TOOL},
+        {CP_ERR_CUSP, CP_ST_CUSP},
+        {CP_ERR_NUMERIC, CP_ST_NUMERIC},
+        {CP_ERR_TOL, CP_ST_TOL},
+        {CP_ERR_IO, CP_ST_NUMERIC},
+        {CP_ERR_FULL, CP_ST_NUMERIC},
+        {CP_ERR_STATE, CP_ST_NUMERIC},
+        {CP_ERR_DONE, CP_ST_NUMERIC},
+        {CP_ERR_OFF_PLANE, CP_ST_OFF_PLANE},
+        {CP_ERR_FRENET, CP_ST_FRENET},
+        {CP_ERR_FRAME_REF, CP_ST_FRAME_REF},
+        {CP_ERR_SECTION, CP_ST_SECTION},
+        {CP_ERR_FT_RANGE, CP_ST_FT_RANGE},
+        {CP_ERR_FOLD, CP_ST_FOLD},
+        {CP_ERR_TOO_FEW, CP_ST_TOO_FEW},
+        {CP_ERR_EXPONENT, CP_ST_EXPONENT},
+        {CP_ERR_COINCIDENT, CP_ST_COINCIDENT},
+        {CP_ERR_SECTION_PLANE, CP_ST_SECTION_PLANE},
+        {CP_ERR_AREA_LAW, CP_ST_AREA_LAW},
+        {CP_ERR_ISOTROPIC, CP_ST_ISOTROPIC},
+        {CP_ERR_TURN, CP_ST_TURN},
+        {CP_ERR_TWIST, CP_ST_TWIST},
+        {CP_ERR_BUFFER, CP_ST_BUFFER},
+        {-31, CP_ST_NUMERIC}, /* not (yet) an enum cp_err */
+        {1, CP_ST_NUMERIC},   /* WIRE_ONLY's value is no cp_err */
+    };
+    unsigned i;
+    for (i = 0; i < sizeof map / sizeof map[0]; i++) {
+        CHECK_EQ_INT(cp_status_of(map[i].err), map[i].st);
+    }
+    return 0;
+}
+
+/* The check order of every argument shape (job.h enum job_shape, commands.def): arity,
+ * word, unsigned number, numbers, then the hook's ranges; the option words of TOOL (after
+ * the range) and CIRCLES (before everything); a model's command under another SURFACE. */
+int test_job_shapes(void)
+{
+    static const struct {
+        const char *line;
+        int st;
+    } cases[] = {
+        {"TOOL NONE x", CP_ST_BAD_KEYWORD},       /* a word without numbers takes nothing */
+        {"TOOL BALL", CP_ST_BAD_ARITY},           /* BALL r */
+        {"TOOL BALL x FOO", CP_ST_BAD_NUMBER},    /* numbers before the option */
+        {"TOOL BALL -1 FOO", CP_ST_OUT_OF_RANGE}, /* the range before the option */
+        {"TOOL BALL 1 FOO", CP_ST_BAD_KEYWORD},
+        {"TOOL BALL 1 TIP X", CP_ST_BAD_ARITY},
+        {"tool ball 1 centre", CP_ST_OK},
+        {"CIRCLES 3 x 10 FOO", CP_ST_BAD_KEYWORD}, /* the option before the numbers */
+        {"CIRCLES 3 x 10 PATCH", CP_ST_BAD_NUMBER},
+        {"LINES 3 -10 10 PATCH", CP_ST_BAD_ARITY}, /* LINES has no option */
+        {"CIRCLES 3 -10 10 PATCH", CP_ST_OK},
+        {"FORMAT X Y", CP_ST_BAD_ARITY}, /* WORD: arity before the word */
+        {"FORMAT XML", CP_ST_BAD_KEYWORD},
+        {"CURVE FOO 1", CP_ST_BAD_KEYWORD}, /* WORD_THEN_NUMBERS: the word first */
+        {"CURVE LINE 0 0 1", CP_ST_BAD_ARITY},
+        {"CURVE LINE 0 0 1 nan", CP_ST_NONFINITE},
+        {"STEPS x", CP_ST_BAD_NUMBER}, /* UINT_OR_WORD without words */
+        {"STEPS 4294967296", CP_ST_OUT_OF_RANGE},
+        {"STEPS 1 2", CP_ST_BAD_ARITY},
+        {"POINT 1 2", CP_ST_WRONG_SURFACE}, /* before the arity */
+        {"POINT 1", CP_ST_WRONG_SURFACE},
+        {"SURFACE FOO", CP_ST_BAD_KEYWORD},
+        {"SURFACE DRC", CP_ST_OK},
+        {"POINT 1", CP_ST_BAD_ARITY}, /* NUMBERS 2..3 */
+        {"POINT 1 2 3 4", CP_ST_BAD_ARITY},
+        {"POINT 1e5 0", CP_ST_OUT_OF_RANGE},
+        {"THICKEN x", CP_ST_BAD_NUMBER}, /* UINT_OR_WORD: not AUTO, so a number */
+        {"THICKEN 99", CP_ST_TOO_MANY},
+        {"THICKEN auto", CP_ST_OK},
+        {"EDGE MAYBE", CP_ST_BAD_KEYWORD},
+        {"SECTION 1 1 2 0 0 0 0 0 0", CP_ST_WRONG_SURFACE},
+        {"RUN", JOB_NOT_MINE}, /* the protocol's */
+        {"RESUME 3", JOB_NOT_MINE},
+        {"FOO 1", JOB_NOT_MINE},
+    };
+    static struct job j;
+    uint32_t k = 7u;
+    unsigned i;
+    job_init(&j);
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        int st = job_command(&j, cases[i].line, strlen(cases[i].line));
+        if (st != cases[i].st) {
+            printf("  note: %s -> %d\n", cases[i].line, st);
+        }
+        CHECK_EQ_INT(st, cases[i].st);
+    }
+    /* the protocol's entry: RUN alone and RESUME k run, RESUME's own range code */
+    CHECK_EQ_INT(job_line(&j, "RUN", 3u, &k), JOB_RUN);
+    CHECK_EQ_INT(k, 0);
+    CHECK_EQ_INT(job_line(&j, "RUN 1", 5u, &k), JOB_NOT_MINE);
+    CHECK_EQ_INT(job_line(&j, "RESUME 12", 9u, &k), JOB_RUN);
+    CHECK_EQ_INT(k, 12);
+    CHECK_EQ_INT(job_line(&j, "RESUME 4294967296", 17u, &k), CP_ST_RESUME_RANGE);
+    CHECK_EQ_INT(job_line(&j, "RESUME", 6u, &k), CP_ST_BAD_ARITY);
+    return 0;
+}
+
 int test_proto_info(void)
 {
     static struct hal_mem m;
@@ -89,7 +203,8 @@ int test_proto_info(void)
     hal_mem_feed(&m, "$\x01I\n$i\n", 7);
     pump(&p);
     CHECK(m.out_len > 40);
-    CHECK(memcmp(m.out, "error:2 line too long\nerror:8 invalid character in line\n[VER:", 60) == 0);
+    CHECK(memcmp(m.out, "error:2 line too long\nerror:8 invalid character in line\n[VER:", 60) ==
+          0);
 
     /* hang-up is reported and sticky */
     hal_mem_hangup(&m);

@@ -5,4 +5,4 @@
 # SPDX-License-Identifier: MIT
 echo "| code | name | text on the wire |"
 echo "|---:|---|---|"
-sed -n 's/^CP_STATUS(\([A-Z_]*\), *\([0-9]*\), *"\(.*\)")$/| \2 | \1 | `\3` |/p' "${1:-firmware/cp_status.def}"
+sed -n 's/^CP_STATUS(\([A-Z_]*\), *\([0-9]*\), *"\(.*\)", *[A-Z_]*)$/| \2 | \1 | `\3` |/p' "${1:-firmware/cp_status.def}"

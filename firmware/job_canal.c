@@ -1,0 +1,50 @@
+/* job_canal.c - protocol commands of the canal's geometry (docs/PROTOCOL.md); the surface
+ * is struct canal_cfg in job->canal (canal.h), kept by SURFACE: every model may use it (DRC
+ * EDGE ON fillets with its RADIUS law); job_geom_fill hands it to the path at RUN.
+ * SPDX-License-Identifier: MIT
+ *
+ *   CURVE LINE x0 y0 x1 y1 | ARC cx cy r a0 a1 | ELLIPSE cx cy A B a0 a1
+ *         | BEZIER x0 y0 x1 y1 x2 y2 x3 y3     (mm; angles a0, a1 in degrees)
+ *   RADIUS CONST c | LINEAR r0 r1 | COS b c k | CUBIC r0 r1 r2 r3
+ * Arity error:3, numbers error:4/5, keyword error:9 (job.c, from commands.def); the
+ * geometry itself is checked by RUN (canal_init: error:11, 12, 13, ...).
+ */
+#include "job.h"
+
+void job_canal_defaults(union path_geom *g)
+{
+    (void)g; /* SURFACE CANAL: the canal's geometry is job->canal, which SURFACE keeps */
+}
+
+int job_canal_ready(const struct job *j)
+{
+    return (j->have & JOB_HAVE_ALL) == JOB_HAVE_ALL; /* CURVE, RADIUS, LINES or CIRCLES */
+}
+
+int job_canal_command(struct job *j, struct job_args *a)
+{
+    struct canal_cfg *surf = &j->canal;
+    unsigned i;
+    switch (a->cmd) {
+    case CANAL_CMD_CURVE: /* the word's numbers, the rest 0 */
+        for (i = 0; i < sizeof surf->cp / sizeof surf->cp[0]; i++) {
+            surf->cp[i] = i < a->na ? a->v[i] : CP_R(0.0);
+        }
+        if (a->word == JOB_WORD_CURVE_ARC || a->word == JOB_WORD_CURVE_ELLIPSE) {
+            surf->cp[a->na - 2u] *= CP_DEG2RAD; /* the two angles come last */
+            surf->cp[a->na - 1u] *= CP_DEG2RAD;
+        }
+        surf->curve = (uint8_t)a->value; /* enum canal_curve_kind */
+        j->have |= JOB_HAVE_CURVE;
+        return CP_ST_OK;
+    case CANAL_CMD_RADIUS:
+        for (i = 0; i < sizeof surf->rp / sizeof surf->rp[0]; i++) {
+            surf->rp[i] = i < a->na ? a->v[i] : CP_R(0.0);
+        }
+        surf->radius = (uint8_t)a->value; /* enum canal_radius_kind */
+        j->have |= JOB_HAVE_RADIUS;
+        return CP_ST_OK;
+    default: /* not the canal's (unreachable: job.c calls the owner's hook) */
+        return CP_ST_UNKNOWN_CMD;
+    }
+}
