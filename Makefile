@@ -22,9 +22,13 @@ WARN := -std=c99 -pedantic -Werror -Wall -Wextra -Wvla -Wdouble-promotion -Wshad
 # Determinism: no FMA contraction (native and M4F streams are byte-identical),
 # no errno from sqrt (inlined as one instruction).
 FPFLAGS := -ffp-contract=off -fno-math-errno
-INC := -Ifirmware -Ihal -Itests
+# The firmware's layers are the folders of firmware/ (docs/ARCHITECTURE.md); sources include
+# each other by file name, so every layer folder is on the include path.
+FW_DIRS := $(sort $(patsubst %/,%,$(dir $(wildcard firmware/*/*.h firmware/*/*.c firmware/*/*.def))))
+FW_INC  := $(addprefix -I,$(FW_DIRS))
+INC := $(FW_INC) -Itests
 
-FW_SRC   := $(wildcard firmware/*.c)
+FW_SRC   := $(wildcard firmware/*/*.c)
 TEST_SRC := $(filter-out tests/fuzz_%.c tests/fw_fake.c,$(wildcard tests/*.c))
 
 HOST_CFLAGS := $(WARN) $(FPFLAGS) -O2 -g $(INC)

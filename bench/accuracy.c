@@ -1,5 +1,5 @@
 /* accuracy.c - host benchmark: max error vs step count, contact-frame single
- * quadrature (firmware/canal_path.c) against the paper's Frenet two-quadrature form
+ * quadrature (firmware/models/canal_path.c) against the paper's Frenet two-quadrature form
  * (bench/frenet.c), on the paper's example where the exact grid is elementary:
  * Lambda(t) = (11/6)(cos 2t - 1) (MATH-canal §7), evaluated in long double at the
  * same (cp_real) t nodes the firmware used.

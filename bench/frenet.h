@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: MIT
  *
  * Not part of the firmware image. Used by `make bench` to compare cost and accuracy
- * with the contact-frame single quadrature of firmware/canal_path.c. Restricted to the
+ * with the contact-frame single quadrature of firmware/models/canal_path.c. Restricted to the
  * shape of the paper's example: C = ARC (cx, cy, r, counter-clockwise), R = b cos(k t) + c.
  *
  *   v(t, w) = v1 + 1 / (Phi (w + Psi)),  u_F = 2 atan v  (Frenet angle)

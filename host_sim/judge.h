@@ -1,7 +1,7 @@
 /* judge.h - host_sim's judges: one per surface model, one row each in sim_check.c's table.
  * SPDX-License-Identifier: MIT
  *
- * The rows come from firmware/models.def (CP_MODEL(NAME, name, WITH, "WORD")): model
+ * The rows come from firmware/models/models.def (CP_MODEL(NAME, name, WITH, "WORD")): model
  * <name> is judged by host_sim/judge_<name>.c, which defines the judge_<name>_* hooks
  * below, and its row is { "WORD", judge_<name>_reset, ..., judge_<name>_report }. Every
  * row is compiled in whatever WITH says (host_sim judges any firmware image; an image

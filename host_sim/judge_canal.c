@@ -8,9 +8,9 @@
  * STEPS, TOL stay in it); it judges only the runs of SURFACE CANAL.
  *
  * Model. The job commands are parsed here (same grammar and range checks as
- * firmware/job.c, in double, degrees -> radians) into a struct ref_canal. The
+ * firmware/job/job.c, in double, degrees -> radians) into a struct ref_canal. The
  * raster is rebuilt from the run header (mode, n, steps, link) exactly as
- * firmware/canal_path.h defines it, with DOUBLE t:
+ * firmware/models/canal_path.h defines it, with DOUBLE t:
  *   LINES    block = steps + 1 + link, j = k / block, r = k % block.
  *            r <= steps: line j at i = (j odd ? steps - r : r), t_i = t0 + i (t1 - t0)/steps,
  *            u = the family-2 line through (t0, u0 + j (u1 - u0)/(n - 1)), integrated by

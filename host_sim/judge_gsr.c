@@ -5,7 +5,7 @@
  * The job lines are parsed here with the grammar of docs/PROTOCOL.md ("Generalized surfaces
  * of revolution"): CENTER X|Y|Z, CENTER P0..P3, RADII N|B|T (w in degrees), FRAME, FORM,
  * and the shared TOOL, LINES, CIRCLES, STEPS, TOL. The raster is rebuilt from the run
- * header (mode, n, steps, link) as firmware/gsr.h documents it, in double:
+ * header (mode, n, steps, link) as firmware/models/gsr.h documents it, in double:
  *   block = steps + 1 + link, line j = k / block, r = k % block, odd lines backwards;
  *   LINES   line j at theta_j = v0 + j (v1 - v0)/(n - 1), u = i / steps; link kk at the
  *           line's end u, section parameter from line j's to line j + 1's (fraction

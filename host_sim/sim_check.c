@@ -1,5 +1,5 @@
 /* sim_check.c - host_sim as the judge: the model-independent part. The job's SURFACE picks
- * one row of the judge table (one row per line of firmware/models.def, judge.h); the
+ * one row of the judge table (one row per line of firmware/models/models.def, judge.h); the
  * judges themselves are host_sim/judge_<name>.c, each with its own independent
  * double-precision model (tests/ref_<name>.c).
  * SPDX-License-Identifier: MIT

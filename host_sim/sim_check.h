@@ -1,7 +1,7 @@
 /* sim_check.h - host_sim as the judge: every received point against host_sim's own
  * independent double-precision model of the job's surface model (tests/ref_<m>.c; no
  * firmware code). This is the model-independent front: the SURFACE word picks a row of
- * the judge table (judge.h, one row per firmware/models.def line, judge_<m>.c).
+ * the judge table (judge.h, one row per firmware/models/models.def line, judge_<m>.c).
  * SPDX-License-Identifier: MIT
  *
  * Call order, per run of host_sim:
@@ -34,7 +34,7 @@ void sim_check_init(void);
 /* A job command as sent to the firmware (no newline). Returns 0; -1 if the judge
  * cannot model it (then the run is reported as unchecked: a failed check).
  * Returns 1 for a job command with bad arguments (arity, number, keyword, range, as
- * firmware/job.c checks them): the firmware must answer error and the model is left
+ * firmware/job/job.c checks them): the firmware must answer error and the model is left
  * unchanged, exactly as the firmware leaves its job. Non-job lines return 0. */
 int sim_check_job_line(const char *line);
 

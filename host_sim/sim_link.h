@@ -9,7 +9,7 @@
  * Replies (firmware -> host) are ASCII lines ending in '\n' ("\r\n" accepted):
  *   "ok"                   terminal reply, success
  *   "error:<code> <text>"  terminal reply, failure; <text> must be the text of
- *                          <code> in firmware/cp_status.def
+ *                          <code> in firmware/base/cp_status.def
  *   "[...]"                info line ([VER:...], [OPT:...], ...)
  *   anything else          passed to the caller's line handler (a RUN stream line)
  *                          if one is given and it accepts it, else "unknown"
@@ -95,7 +95,7 @@ int sim_link_read_line(struct sim_link *l, uint64_t deadline_ms);
 int sim_link_await(struct sim_link *l, uint64_t deadline_ms, struct sim_reply *r,
                    sim_link_line_fn fn, void *ctx);
 
-/* Text of wire status `code` from firmware/cp_status.def, or NULL if unknown. */
+/* Text of wire status `code` from firmware/base/cp_status.def, or NULL if unknown. */
 const char *sim_link_status_text(int code);
 
 /* Text of an enum sim_link_rc. */

@@ -1,18 +1,18 @@
 # mk/canal.mk - host tools of the canal core: demo renderer and accuracy bench.
 # SPDX-License-Identifier: MIT
 
-CANAL_FW := firmware/canal.c firmware/canal_path.c firmware/cp_math.c
-TOOL_CFLAGS := -std=c99 -O2 -Wall -Wextra -Werror -D_GNU_SOURCE $(FPFLAGS) -Ifirmware -Ihal -Ibench
+CANAL_FW := firmware/models/canal.c firmware/models/canal_path.c firmware/models/raster.c firmware/base/cp_math.c
+TOOL_CFLAGS := -std=c99 -O2 -Wall -Wextra -Werror -D_GNU_SOURCE $(FPFLAGS) $(FW_INC) -Ibench
 
-$(BUILD)/host/canal_demo: tools/canal_demo.c $(CANAL_FW) $(wildcard firmware/*.h)
+$(BUILD)/host/canal_demo: tools/canal_demo.c $(CANAL_FW) $(wildcard firmware/*/*.h)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/canal_demo.c $(CANAL_FW) -lm
 
-$(BUILD)/host/accuracy_f: bench/accuracy.c bench/frenet.c bench/frenet.h $(CANAL_FW) $(wildcard firmware/*.h)
+$(BUILD)/host/accuracy_f: bench/accuracy.c bench/frenet.c bench/frenet.h $(CANAL_FW) $(wildcard firmware/*/*.h)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TOOL_CFLAGS) -DCP_REAL_DOUBLE=0 -o $@ bench/accuracy.c bench/frenet.c $(CANAL_FW) -lm
 
-$(BUILD)/host/accuracy_d: bench/accuracy.c bench/frenet.c bench/frenet.h $(CANAL_FW) $(wildcard firmware/*.h)
+$(BUILD)/host/accuracy_d: bench/accuracy.c bench/frenet.c bench/frenet.h $(CANAL_FW) $(wildcard firmware/*/*.h)
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(TOOL_CFLAGS) -DCP_REAL_DOUBLE=1 -o $@ bench/accuracy.c bench/frenet.c $(CANAL_FW) -lm
 
@@ -44,15 +44,15 @@ sizes: $(BUILD)/m4f/sizes_probe.o $(BUILD)/hostd/sizes_probe.o
 	    a=$$(arm-none-eabi-nm -S $(BUILD)/m4f/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    b=$$(nm -S $(BUILD)/hostd/sizes_probe.o | awk -v n=sizeof_$$s '$$4 == n {print $$2}'); \
 	    printf "  struct %-20s %9d   %11d\n" $$s $$((0x$$a)) $$((0x$$b)); done
-	@echo "  (struct canal_path <= $$(sed -n 's/^#define CP_CANAL_PATH_BUDGET \([0-9]*\)$$/\1/p' firmware/cp_config.h) bytes in the float build: static assert in canal_path.c)"
+	@echo "  (struct canal_path <= $$(sed -n 's/^#define CP_CANAL_PATH_BUDGET \([0-9]*\)$$/\1/p' firmware/base/cp_config.h) bytes in the float build: static assert in canal_path.c)"
 
-$(BUILD)/m4f/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
+$(BUILD)/m4f/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*/*.h)
 	@mkdir -p $(@D)
-	$(Q)arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -std=c99 -Os -fno-common -Ifirmware -Ihal -c $< -o $@
+	$(Q)arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -std=c99 -Os -fno-common $(FW_INC) -c $< -o $@
 
-$(BUILD)/hostd/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*.h)
+$(BUILD)/hostd/sizes_probe.o: tools/sizes_probe.c $(wildcard firmware/*/*.h)
 	@mkdir -p $(@D)
-	$(Q)$(CC) -std=c99 -O2 -fno-common -DCP_REAL_DOUBLE=1 -Ifirmware -Ihal -c $< -o $@
+	$(Q)$(CC) -std=c99 -O2 -fno-common -DCP_REAL_DOUBLE=1 $(FW_INC) -c $< -o $@
 
 size: sizes
 
@@ -64,4 +64,4 @@ guard-readme:
 .PHONY: format
 ## format: clang-format firmware/ (house style: .clang-format)
 format:
-	$(Q)clang-format -i firmware/*.c firmware/*.h
+	$(Q)clang-format -i firmware/*/*.c firmware/*/*.h

@@ -108,7 +108,7 @@ $(1)/tests/%.o: tests/%.c
 # the harnesses that decode the firmware's output call the copy (FUZZ_HFRAME)
 $(1)/tests/fuzz_cmd.o $(1)/tests/fuzz_run.o: FUZZ_HDEFS = $$(FUZZ_HFRAME)
 
-$(1)/tests/frame_h.o: firmware/frame.c
+$(1)/tests/frame_h.o: firmware/proto/frame.c
 	@mkdir -p $$(@D)
 	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) $(2) $$(FUZZ_H_OPT) $$(FUZZ_HFRAME) -MMD -MP -c $$< -o $$@
 

@@ -76,7 +76,7 @@ M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
         guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images \
-        guard-fnlen
+        guard-fnlen guard-layers
 
 ##
 ## m4f-fw: build build/m4f/fw.elf (Cortex-M4F firmware image for QEMU mps2-an386)
@@ -149,11 +149,11 @@ $(M4F)/lto/%.o: firmware/%.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) -MMD -MP -c $< -o $@
 
-$(M4F_IMG_DIR)/set-%/path.o: firmware/path.c
+$(M4F_IMG_DIR)/set-%/path.o: firmware/path/path.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
-$(M4F_IMG_DIR)/set-%/job.o: firmware/job.c
+$(M4F_IMG_DIR)/set-%/job.o: firmware/job/job.c
 	@mkdir -p $(@D)
 	$(Q)$(M4F_CC) $(M4F_IMG_CC) $(M4F_SET_$*) -MMD -MP -c $< -o $@
 
@@ -263,7 +263,7 @@ guard-double: $(M4F_FW_OBJ) $(M4F)/fw.elf
 
 ## guard-warn: every firmware/*.c and hal/*/*.c through clang and gcc with $(WARN)
 GUARD_WARN_ARGS = CC="$(CC)" CLANG="$(CLANG)" M4F_CC="$(M4F_CC)" \
-    WARN="$(WARN) $(FPFLAGS)" INC="-Ifirmware -Ihal"
+    WARN="$(WARN) $(FPFLAGS)" INC="$(FW_INC)"
 guard-warn:
 	$(Q)$(GUARD_WARN_ARGS) sh tools/guard.sh warn guard-warn $(FW_SRC) $(wildcard hal/*/*.c)
 
@@ -273,6 +273,11 @@ FN_LINES_MAX ?= 120
 guard-fnlen:
 	$(Q)sh tools/guard_fnlen.sh guard-fnlen $(FN_LINES_MAX) \
 	    $$(find firmware host_sim -name '*.[ch]' | LC_ALL=C sort)
+
+## guard-layers: the folders of firmware/ are its layers; every #include goes down them, none into
+##               hal/ or tests/ (tools/guard_layers.sh, docs/ARCHITECTURE.md; word "layers")
+guard-layers:
+	$(Q)sh tools/guard_layers.sh
 
 ## guard-selftest: prove the alloc and double guards fail on injected malloc / double sqrt,
 ##                 and guard-fnlen on a function one line over FN_LINES_MAX

@@ -9,7 +9,7 @@
 #   build/host/fw_fake     tests/fw_fake.c (misbehaving firmwares for sim-robust)
 
 SIM_POSIX   := -D_XOPEN_SOURCE=600
-SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) -Ifirmware -Ihal -Ihost_sim -Itests
+SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) $(FW_INC) -Ihost_sim -Itests
 # per-reply timeout of sim-native/sim-qemu (ms; the timeout rule of mk/m4f.mk: >= 5x the
 # unloaded time): the slowest reply is QEMU's boot to the first $I answer, 34-45 ms
 # (2026-11-26), other replies <= 7 ms; 2000 ms is 44x
@@ -21,9 +21,9 @@ POSIX_SRC   := $(wildcard hal/posix/*.c)
 POSIX_OBJ   := $(patsubst hal/posix/%.c,$(BUILD)/host/posix/%.o,$(POSIX_SRC))
 HOSTSIM_SRC := $(wildcard host_sim/*.c)
 HOSTSIM_OBJ := $(patsubst host_sim/%.c,$(BUILD)/host/host_sim_obj/%.o,$(HOSTSIM_SRC))
-# one judge per row of firmware/models.def (CP_MODEL(NAME, name, ...)): host_sim/judge_<name>.c
+# one judge per row of firmware/models/models.def (CP_MODEL(NAME, name, ...)): host_sim/judge_<name>.c
 # (in HOSTSIM_SRC) and its reference tests/ref_<name>.c
-SIM_MODELS  := $(shell sed -n 's/^CP_MODEL[^,]*, *\([a-z0-9_]*\),.*/\1/p' firmware/models.def)
+SIM_MODELS  := $(shell sed -n 's/^CP_MODEL[^,]*, *\([a-z0-9_]*\),.*/\1/p' firmware/models/models.def)
 HOSTSIM_REF := $(patsubst %,$(BUILD)/host/host_sim_obj/ref_%.o,$(SIM_MODELS))
 
 .PHONY: fw-native host-sim fw-fake sim-native sim-qemu sim-robust
@@ -47,8 +47,8 @@ host-sim: $(BUILD)/host/host_sim
 $(BUILD)/host/host_sim: $(HOSTSIM_OBJ) $(HOSTSIM_REF) $(BUILD)/host/host_sim_obj/frame.o
 	$(Q)$(CC) -o $@ $^ -lm
 
-# the frame codec is portable C: host_sim links firmware/frame.c (FRAMES receiver)
-$(BUILD)/host/host_sim_obj/frame.o: firmware/frame.c firmware/frame.h
+# the frame codec is portable C: host_sim links firmware/proto/frame.c (FRAMES receiver)
+$(BUILD)/host/host_sim_obj/frame.o: firmware/proto/frame.c firmware/proto/frame.h
 	@mkdir -p $(@D)
 	$(Q)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
 

@@ -1,4 +1,4 @@
-/* fuzz_frame.c - libFuzzer target: the frame decoder (firmware/frame.c).
+/* fuzz_frame.c - libFuzzer target: the frame decoder (firmware/proto/frame.c).
  * SPDX-License-Identifier: MIT
  *
  * Input: arbitrary bytes fed one at a time to frame_rx_feed.

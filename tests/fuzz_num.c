@@ -1,4 +1,4 @@
-/* fuzz_num.c - libFuzzer target: the number and token parser (firmware/parse.c).
+/* fuzz_num.c - libFuzzer target: the number and token parser (firmware/job/parse.c).
  * SPDX-License-Identifier: MIT
  *
  * Input: byte 0 selects the cap of parse_split and part of the parse_uint maximum,

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: MIT
  *
  * Written from ../shared/docs/MATH-seeds-2-3-4.md part B only; it calls no firmware code
- * and is written differently from firmware/channel.c:
+ * and is written differently from firmware/models/channel.c:
  *   - orientation by explicit 3x3 matrix products of eqs. (10)-(12);
  *   - guide by the six quintic Hermite basis functions of B.2 step 2 (and their
  *     derivatives) as printed, the node second derivatives of B7 from the one-sided

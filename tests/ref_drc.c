@@ -1,6 +1,6 @@
 /* ref_drc.c - independent double reference of DRC-EXP, DD4, CCR, CSPLINE and A.4 measures.
  * SPDX-License-Identifier: MIT
- * (ref_drc.h: what is deliberately different from firmware/drc.c)
+ * (ref_drc.h: what is deliberately different from firmware/models/drc.c)
  */
 #include "ref_drc.h"
 

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: MIT
  *
  * Written from MATH-seeds-2-3-4.md part A only; includes no firmware header and shares
- * no code with firmware/drc.c. Differences on purpose: libm expm1 with the A.2 series
+ * no code with firmware/models/drc.c. Differences on purpose: libm expm1 with the A.2 series
  * threshold (|q| < 1e-4), <complex.h> for every insertion (planar data too: the
  * twisted model reduces to real z), explicit angle bookkeeping with acos-free
  * atan2 forms, out-of-place passes. Also: DD4 (4-point Dubuc/Deslauriers), CCR

@@ -24,7 +24,7 @@ rm -rf "$S"; mkdir -p "$S"
 # with no _sbrk in the firmware image the link itself already fails.
 build() {
     d=$S/$1; mkdir -p "$d/src" "$d/host" "$d/m4f"
-    cp firmware/*.c firmware/*.h firmware/*.def "$d/src/" 2>/dev/null
+    cp firmware/*/*.c firmware/*/*.h firmware/*/*.def "$d/src/" 2>/dev/null
     [ -n "$2" ] && printf '%s\n' "$2" > "$d/src/selftest_inject.c"
     for c in "$d"/src/*.c; do
         b=$(basename "$c" .c)

@@ -14,8 +14,8 @@ d=$BUILD/readme; mkdir -p "$d"
     printf '%s\n' 'printf("readme example: %lu points of %lu\n", n_sent, (unsigned long)canal_path_count(&tp));'
     echo 'return n_sent == 0 || n_sent != canal_path_count(&tp); }'
 } > "$d/example.c"
-if ${CC:-cc} -std=c99 -Wall -Wextra -Werror -Wno-unused-result -Ifirmware -Ihal -o "$d/example" "$d/example.c" \
-        firmware/canal.c firmware/canal_path.c firmware/raster.c firmware/cp_math.c -lm && "$d/example"; then
+if ${CC:-cc} -std=c99 -Wall -Wextra -Werror -Wno-unused-result $(for d in firmware/*/; do printf -- "-I%s " "$d"; done) -o "$d/example" "$d/example.c" \
+        firmware/models/canal.c firmware/models/canal_path.c firmware/models/raster.c firmware/base/cp_math.c -lm && "$d/example"; then
     echo "readme: 1 passed, 0 failed"
 else
     echo "readme: 0 passed, 1 failed"; exit 1

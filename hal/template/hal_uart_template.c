@@ -1,4 +1,4 @@
-/* hal_uart_template.c - skeleton of a new serial port for hal/hal_uart.h; lists every obligation.
+/* hal_uart_template.c - skeleton of a new serial port for firmware/port/hal_uart.h; lists every obligation.
  * SPDX-License-Identifier: MIT
  *
  * Copy to hal/<port>/hal_uart_<port>.c, rename hal_uart_template_* to hal_uart_<port>_*, fill the

@@ -2,7 +2,7 @@
  * SPDX-License-Identifier: MIT
  *
  * Commands (case-insensitive keywords; numbers in mm, angles in degrees; the full list,
- * with the models' own commands, is firmware/commands.def):
+ * with the models' own commands, is firmware/job/commands.def):
  *   CURVE LINE x0 y0 x1 y1 | ARC cx cy r a0 a1 | ELLIPSE cx cy A B a0 a1
  *         | BEZIER x0 y0 x1 y1 x2 y2 x3 y3
  *   RADIUS CONST c | LINEAR r0 r1 | COS b c k | CUBIC r0 r1 r2 r3

@@ -9,7 +9,7 @@
  * for every model; the canal model also takes its geometry from it (cfg.surf),
  * the other models from `union path_geom`.
  *
- * Models: firmware/models.def, one row each (the SURFACE word, the module prefix, the
+ * Models: firmware/models/models.def, one row each (the SURFACE word, the module prefix, the
  * compile-time switch). From it come enum path_kind, the iterator union of struct path,
  * the dispatch of path.c, the job's per-model hooks (job.c) and the $I model list:
  *   PATH_CANAL    canal surface touching the floor along a plane curve (seed 000)
@@ -19,7 +19,7 @@
  * A kind whose model is not compiled in is refused by SURFACE (error:9).
  *
  * HOW TO ADD A MODEL <m> (kind PATH_<M>): one row in each table, and its own files:
- *   1. firmware/models.def: CP_MODEL(<M>, <m>, CP_WITH_<M>, "<WORD>") (appended), and
+ *   1. firmware/models/models.def: CP_MODEL(<M>, <m>, CP_WITH_<M>, "<WORD>") (appended), and
  *      CP_WITH_<M> in cp_config.h.
  *   2. firmware/<m>.h, <m>.c: struct <m>_cfg (geometry, plain data) and an iterator
  *      struct <m>_path with
@@ -31,7 +31,7 @@
  *      and the fields count (0 after a failed init), k (points emitted), n, steps,
  *      link, mode. Include <m>.h below (union path_geom and struct path follow).
  *   3. firmware/job_<m>.c: job_<m>_command, job_<m>_defaults, job_<m>_ready (job.h
- *      declares them from the row); its commands as rows of firmware/commands.def
+ *      declares them from the row); its commands as rows of firmware/job/commands.def
  *      (OWNER <M>, SURFACE OWN).
  *   4. its cp_err codes (cp_types.h): rows appended to cp_status.def (the FROM column).
  *   5. docs/PROTOCOL.md: the commands; tests/ref_<m>.c; host_sim/judge_<m>.c.
