@@ -90,6 +90,10 @@
 #ifndef CP_WITH_DRC
 #define CP_WITH_DRC 1
 #endif
+/* The example model of docs/ARCHITECTURE.md (a flat strip): test builds only. */
+#ifndef CP_WITH_PLANE
+#define CP_WITH_PLANE 0
+#endif
 
 #if CP_LINE_MAX < 16 || CP_LINE_MAX > 250
 #error "CP_LINE_MAX must be in 16..250"
@@ -120,8 +124,8 @@
 #endif
 
 #if (CP_WITH_GSR != 0 && CP_WITH_GSR != 1) || (CP_WITH_CHANNEL != 0 && CP_WITH_CHANNEL != 1) || \
-    (CP_WITH_DRC != 0 && CP_WITH_DRC != 1)
-#error "CP_WITH_GSR, CP_WITH_CHANNEL and CP_WITH_DRC must be 0 or 1"
+    (CP_WITH_DRC != 0 && CP_WITH_DRC != 1) || (CP_WITH_PLANE != 0 && CP_WITH_PLANE != 1)
+#error "CP_WITH_GSR, CP_WITH_CHANNEL, CP_WITH_DRC and CP_WITH_PLANE must be 0 or 1"
 #endif
 #if CP_MAX_SECTIONS < 2 || CP_MAX_SECTIONS > 4
 #error "CP_MAX_SECTIONS must be in 2..4"
