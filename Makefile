@@ -26,7 +26,9 @@ FPFLAGS := -ffp-contract=off -fno-math-errno
 # each other by file name, so every layer folder is on the include path.
 FW_DIRS := $(sort $(patsubst %/,%,$(dir $(wildcard firmware/*/*.h firmware/*/*.c firmware/*/*.def))))
 FW_INC  := $(addprefix -I,$(FW_DIRS))
-INC := $(FW_INC) -Itests
+# CP_DEFS: compile-time knobs for a test build (e.g. -DCP_WITH_PLANE=1, make example-model)
+CP_DEFS ?=
+INC := $(FW_INC) -Itests $(CP_DEFS)
 
 FW_SRC   := $(wildcard firmware/*/*.c)
 TEST_SRC := $(filter-out tests/fuzz_%.c tests/fw_fake.c,$(wildcard tests/*.c))

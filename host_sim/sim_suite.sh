@@ -170,8 +170,20 @@ models)
     if [ $r0 -eq 1 ] && grep -q "FAIL judge line" "$OUT/canal_paper_frames_wrong.out"; then r0=0; else r0=1; fi
     result canal_paper_frames_judge_fails $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge [a-z]*" "$OUT/canal_paper_frames_wrong.out" | tr '\n' ' '))"
     ;;
+example)
+    # the example model (docs/ARCHITECTURE.md): a firmware built with CP_WITH_PLANE=1
+    # (make example-model), its job judged against tests/ref_plane.c; the judge must fail
+    # on a point moved 5 um
+    NAT=$B/example/host/fw_native
+    hs example_plane native --job "$J/example_plane.job" --csv "$OUT/example_plane.csv"
+    result example_plane $? "$(figs example_plane)"
+    SIM_JUDGE_PERTURB_K=10 hs example_plane_wrong native --job "$J/example_plane.job"
+    r0=$?
+    if [ $r0 -eq 1 ] && grep -q "FAIL judge plane-point" "$OUT/example_plane_wrong.out"; then r0=0; else r0=1; fi
+    result example_plane_judge_fails $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge plane-[a-z]*" "$OUT/example_plane_wrong.out" | tr '\n' ' '))"
+    ;;
 *)
-    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models" >&2
+    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example" >&2
     echo "sim-suite: 0 passed, 1 failed"; exit 2
     ;;
 esac

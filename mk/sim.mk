@@ -87,11 +87,19 @@ sim-robust: $(BUILD)/host/host_sim $(BUILD)/host/fw_fake
 	$(Q)BUILD=$(BUILD) sh host_sim/robust.sh
 
 # RUN suites (host_sim/sim_suite.sh): each prints "<word>: N passed, N failed"
-.PHONY: sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models
+.PHONY: example-model sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models
 
 ## sim-models: every tests/jobs/model_<m>_*.job (GSR, CHANNEL, DRC) judged, native and QEMU (fw.elf, all models), streams identical (word "models")
 sim-models: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh models
+
+## example-model: the example model (SURFACE PLANE, docs/ARCHITECTURE.md) in a test build
+##                (CP_WITH_PLANE=1, build/example), judged by host_sim; its judge must fail on a
+##                point moved 5 um (word "example")
+example-model: $(BUILD)/host/host_sim
+	$(Q)$(MAKE) --no-print-directory BUILD=$(BUILD)/example CP_DEFS=-DCP_WITH_PLANE=1 \
+	    $(BUILD)/example/host/fw_native
+	$(Q)BUILD=$(BUILD) sh host_sim/sim_suite.sh example
 
 ## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")
 sim-run-native: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
