@@ -31,7 +31,12 @@
 #include "cp_status.h"
 #include "path.h"
 
-enum job_format { JOB_GCODE = 0, JOB_FRAMES = 1 };
+/* The output formats (FORMAT), one per row of outputs.def: JOB_GCODE, JOB_FRAMES. */
+enum job_format {
+#define CP_OUTPUT(NAME, name, WORD) JOB_##NAME,
+#include "outputs.def"
+#undef CP_OUTPUT
+};
 
 /* have bits: what the canal's and the raster's commands set (every model's, kept by
  * SURFACE). A model's own progress is in its geometry (union path_geom), which SURFACE

@@ -9,12 +9,14 @@
  * stream item, take what the peer sends, finish the run (see out_gcode.h, out_frames.h).
  *
  * Adding an output format (a machine dialect, a 5-axis form):
- *   1. firmware/out_<name>.[ch]: struct out_<name> and its calls, in the shape of
- *      out_gcode.h (text answers from a machine) or out_frames.h (bytes from a host);
- *   2. its JOB_<NAME> in enum job_format and its FORMAT word (job.c);
- *   3. its member in proto.h's union `out`, and one case in each switch on
- *      (enum job_format) in proto.c - run_start, run_emit, run_finish, machine_answer,
- *      feed; -Wswitch (-Wall -Werror) names every switch that still lacks it.
+ *   1. firmware/proto/out_<name>.[ch]: struct out_<name> and its calls, in the shape of
+ *      out_gcode.h (text answers from a machine) or out_frames.h (bytes from a host),
+ *      and its include in proto.h;
+ *   2. one row in firmware/job/outputs.def: enum job_format's JOB_<NAME>, its FORMAT
+ *      word and its member of proto.h's union `out` follow from it;
+ *   3. one case in each switch on (enum job_format) in proto.c - run_start, run_emit,
+ *      run_finish, machine_answer, feed; -Wswitch (-Wall -Werror) names every switch
+ *      that still lacks it.
  * The modules never read the clock or touch the UART: the engine reads the time where
  * a module needs it (exactly where it always did: the in-memory HAL's clock of the
  * tests advances on every read) and passes it in ms, with a buffer to append stream

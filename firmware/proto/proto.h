@@ -84,8 +84,9 @@ struct proto {
     struct out_run run;      /* stream position, acknowledgements, peer clock */
     union {                  /* the state of the run's output format (fmt), set up by its
                               * start call; meaningless while state is PROTO_IDLE */
-        struct out_gcode gcode;
-        struct out_frames frames;
+#define CP_OUTPUT(NAME, name, WORD) struct out_##name name;
+#include "outputs.def"
+#undef CP_OUTPUT
     } out;
 
     /* after a FRAMES run (outlives it): late host frames among the next text */
