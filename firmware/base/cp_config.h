@@ -79,8 +79,9 @@
 /* Surface models compiled into the protocol (SURFACE GSR | CHANNEL | DRC), 0 or 1
  * each; the canal is always in. A model left out costs no flash (its code is never
  * referenced) and SURFACE refuses it with error:9. Host builds take all three. The
- * Cortex-M4F product images are built per model set (mk/m4f.mk M4F_MODELS), each
- * within the 32 KB flash budget. */
+ * Cortex-M4F images, one per model set, are the `image` rows of linker/budget.txt (the
+ * canal product image, each model with the canal, all features); `make guard-images`
+ * holds each to its flash budget with 10 % of it free. */
 #ifndef CP_WITH_GSR
 #define CP_WITH_GSR 1
 #endif

@@ -736,7 +736,9 @@ int gsr_path_next(struct gsr_path *it, struct raster_pt *pt)
     pt->t = x[0];
     pt->line = (int16_t)at.line;
     pt->index = (uint16_t)at.index;
-    it->head.k += err == CP_OK;
+    if (err == CP_OK) {
+        it->head.k++;
+    }
     return err;
 }
 

@@ -84,8 +84,7 @@ struct path_info {
 };
 
 struct path {
-    /* the iterator first, at offset 0 (its hot fields stay at Thumb's short load/store
-     * offsets when reached through the path), then the header */
+    /* the model's iterator (the one of `kind`), then the stream header */
     union {
 #define CP_MODEL(NAME, name, WITH, WORD) struct name##_path name;
 #include "models.def"
