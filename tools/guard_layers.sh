@@ -4,7 +4,8 @@
 #     base < models < path < job < proto < port
 # port/ is the HAL contract the protocol needs (hal_uart.h): it includes only base/.
 # hal/ (the ports) and tests may include anything; firmware/ never includes hal/.
-# Prints one line per offending include and "layers: N passed, N failed".
+# Prints one line per offending include and "layers: N passed, N failed" (one check per
+# layer folder and per file).
 # SPDX-License-Identifier: MIT
 cd "$(dirname "$0")/.." || exit 2
 rank() {
@@ -13,33 +14,34 @@ rank() {
     port) echo 0 ;; *) echo 99 ;;
     esac
 }
-pass=0; fail=0
+pass=0; fail=0; nincl=0
 for dir in firmware/*/; do
     layer=$(basename "$dir")
     r=$(rank "$layer")
     if [ "$r" -eq 99 ]; then
         echo "  FAIL firmware/$layer/: not a layer of docs/ARCHITECTURE.md"; fail=$((fail + 1)); continue
     fi
-    for f in "$dir"*.c "$dir"*.h; do
+    for f in "$dir"*.c "$dir"*.h "$dir"*.def; do
         [ -f "$f" ] || continue
+        fbad=0; nin=0
         for h in $(sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f"); do
             where=$(ls firmware/*/"$h" 2>/dev/null | head -n 1)
             if [ -z "$where" ]; then
                 echo "  FAIL $f includes \"$h\": not a firmware header (firmware/ never includes hal/ or tests/)"
-                fail=$((fail + 1)); continue
+                fbad=1; continue
             fi
             hl=$(basename "$(dirname "$where")")
             hr=$(rank "$hl")
             if [ "$layer" = port ] && [ "$hl" != base ] && [ "$hl" != port ]; then hr=99; fi
             if [ "$hr" -gt "$r" ]; then
                 echo "  FAIL $f ($layer) includes $where ($hl): an include up the layers"
-                fail=$((fail + 1))
-            else
-                pass=$((pass + 1))
+                fbad=1
             fi
+            nin=$((nin + 1))
         done
+        if [ $fbad -eq 0 ]; then pass=$((pass + 1)); nincl=$((nincl + nin)); else fail=$((fail + 1)); fi
     done
 done
-[ "$fail" -eq 0 ] && echo "  PASS every include of firmware/ goes down the layers ($pass includes)"
+[ "$fail" -eq 0 ] && echo "  PASS every include of firmware/ goes down the layers ($pass files, $nincl includes)"
 echo "layers: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]
