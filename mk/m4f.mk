@@ -119,11 +119,19 @@ $(M4F)/bench/%.o: bench/%.c
 # them like any other .ci file. The HAL port objects (startup with its own flags,
 # UART0 port, main) stay ordinary objects with their own .ci. unit.elf and bench.elf
 # link the ordinary objects $(M4F)/fw/ (M4F_LTO=0 builds the images from those too).
+# The model sets, from firmware/models/models.def (NAME:name of every row but the canal):
+# set `all` is the defaults (every product model; a test-only model such as the example
+# `plane` defaults to 0), set `canal` turns every other model off, set <name> keeps the
+# canal and model <name> only. linker/budget.txt's `image` rows say which sets are built
+# and guarded (a new product model: one `image <name>` row there).
+M4F_MODEL_ROWS := $(shell sed -n 's/^CP_MODEL.\([A-Z0-9_]*\), *\([a-z0-9_]*\),.*/\1:\2/p' \
+                    firmware/models/models.def | grep -v '^CANAL:')
+M4F_SET_OFF     = $(foreach r,$(M4F_MODEL_ROWS),$(if $(filter $(1),$(word 2,$(subst :, ,$(r)))),,\
+                    -DCP_WITH_$(word 1,$(subst :, ,$(r)))=0))
 M4F_SET_all     :=
-M4F_SET_gsr     := -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
-M4F_SET_channel := -DCP_WITH_GSR=0 -DCP_WITH_DRC=0
-M4F_SET_drc     := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0
-M4F_SET_canal   := -DCP_WITH_GSR=0 -DCP_WITH_CHANNEL=0 -DCP_WITH_DRC=0
+M4F_SET_canal   := $(strip $(call M4F_SET_OFF,canal))
+$(foreach r,$(M4F_MODEL_ROWS),$(eval M4F_SET_$(word 2,$(subst :, ,$(r))) := \
+    $(strip $(call M4F_SET_OFF,$(word 2,$(subst :, ,$(r)))))))
 M4F_FW_SET   ?= all
 M4F_LTO      ?= 1
 ifeq ($(M4F_LTO),1)

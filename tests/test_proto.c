@@ -1,6 +1,8 @@
 /* test_proto.c - fmt and the line protocol engine over the in-memory HAL.
  * SPDX-License-Identifier: MIT
  */
+#include <ctype.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "fmt.h"
@@ -44,6 +46,52 @@ static void pump(struct proto *p)
 
 /* cp_status_of: the FROM column of cp_status.def, CP_ERR_INVAL as OUT_OF_RANGE and the
  * codes no row names as NUMERIC (the mapping job_status_of had, case by case). */
+/* commands.def: every keyword names one command, and a word (or option) names one entry
+ * of its command's list (job.c looks them up by text and takes the first match, so a
+ * second row with the same text could never be reached). */
+struct cmd_text {
+    const char *text;
+    int cmd; /* enum job_cmd of the command a word belongs to; -1 for a keyword */
+};
+static const struct cmd_text cmd_texts[] = {
+#define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE) {KEYWORD, -1},
+#define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE) {TEXT, (int)(CMD)},
+#define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE) {TEXT, (int)(CMD)},
+#include "commands.def"
+#undef CP_CMD
+#undef CP_CMD_WORD
+#undef CP_CMD_OPTION
+};
+
+static int same_text(const char *a, const char *b)
+{
+    while (*a != '\0' && toupper((unsigned char)*a) == toupper((unsigned char)*b)) {
+        a++;
+        b++;
+    }
+    return *a == '\0' && *b == '\0';
+}
+
+int test_commands_distinct(void)
+{
+    size_t n = sizeof cmd_texts / sizeof cmd_texts[0], i, k;
+    unsigned keywords = 0;
+    for (i = 0; i < n; i++) {
+        keywords += cmd_texts[i].cmd < 0;
+        for (k = i + 1; k < n; k++) {
+            if (cmd_texts[i].cmd == cmd_texts[k].cmd && same_text(cmd_texts[i].text, cmd_texts[k].text)) {
+                printf("  commands.def: \"%s\" twice (%s)\n", cmd_texts[i].text,
+                       cmd_texts[i].cmd < 0 ? "keywords" : "words of one command");
+                CHECK(0);
+            }
+        }
+    }
+    CHECK_EQ_INT((int)keywords, (int)JOB_CMDS);
+    TEST_NOTE("commands.def: %u keywords and %u words, all distinct\n", keywords,
+              (unsigned)(n - keywords));
+    return 0;
+}
+
 int test_status_of(void)
 {
     static const struct {
@@ -186,8 +234,8 @@ int test_proto_info(void)
              "link=%d,window=%d,models=CANAL%s%s%s]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
              CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)OUT_FRAMES_WINDOW,
-             PATH_HAVE_GSR ? "+GSR" : "", PATH_HAVE_CHANNEL ? "+CHANNEL" : "",
-             PATH_HAVE_DRC ? "+DRC" : "");
+             CP_WITH_GSR ? "+GSR" : "", CP_WITH_CHANNEL ? "+CHANNEL" : "",
+             CP_WITH_DRC ? "+DRC" : "");
     i = strlen(want);
     CHECK(m.out_len == 2 * i + strlen("ok\nerror:1 unknown command\n"));
     CHECK(memcmp(m.out, want, i) == 0);

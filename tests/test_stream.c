@@ -595,7 +595,7 @@ int test_stream_resend_out_of_sync(void)
 int test_stream_surface(void)
 {
     static const char *const kinds[3] = {"GSR", "CHANNEL", "DRC"};
-    static const int have[3] = {PATH_HAVE_GSR, PATH_HAVE_CHANNEL, PATH_HAVE_DRC};
+    static const int have[3] = {CP_WITH_GSR, CP_WITH_CHANNEL, CP_WITH_DRC};
     char l[160];
     unsigned i;
     rig_init();

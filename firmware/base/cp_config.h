@@ -91,7 +91,9 @@
 #ifndef CP_WITH_DRC
 #define CP_WITH_DRC 1
 #endif
-/* The example model of docs/ARCHITECTURE.md (a flat strip): test builds only. */
+/* The example model of docs/ARCHITECTURE.md (a flat strip): test builds only.
+ * Every CP_WITH_<M> must be a literal 0 or 1 (not 1u): path.h's PATH_IF pastes it into a
+ * macro name. */
 #ifndef CP_WITH_PLANE
 #define CP_WITH_PLANE 0
 #endif

@@ -4,10 +4,13 @@
 #include "cp_types.h"
 #include "cp_status.h"
 
-/* FROM of a row that no enum cp_err maps to (never matched: every cp_err is <= 0) */
+/* FROM of a row that no enum cp_err maps to: the protocol's own codes (a positive value,
+ * so never an enum cp_err, which are all <= 0; cp_types.h) */
 #define WIRE_ONLY 1
+CP_STATIC_ASSERT(CP_OK == 0, cp_ok_is_zero_and_errors_negative);
 
-/* The FROM column, indexed by code (the codes are 0, 1, 2, ...: proto.c checks it). */
+/* The FROM column, indexed by wire code (designated: a row's place in the file does not
+ * matter; a code without a row stays 0 = CP_OK and is never returned for an error). */
 static const int8_t status_from[CP_ST_END_] = {
 #define CP_STATUS(name, code, text, from) [code] = (from),
 #include "cp_status.def"

@@ -44,11 +44,20 @@ struct job_word_row {
 };
 
 CP_STATIC_ASSERT(JOB_CMDS <= 255 && JOB_BAD_WORD <= 255, ids_fit_a_byte);
-/* every keyword and word shorter than PARSE_KW_MAX, every VALUE a byte */
+/* every keyword and word shorter than PARSE_KW_MAX, every VALUE a byte; a command's
+ * numbers fit job_args.v (JOB_MAX_NUMBERS) and its tokens the line's JOB_MAX_TOKENS
+ * (keyword, word or unsigned number, numbers, option); UINT_NUMBERS_OPTION rows take
+ * exactly MIN = MAX numbers (the tests check that keywords and words are distinct:
+ * commands_distinct) */
 #define CP_CMD(OWNER, NAME, KEYWORD, SHAPE, MIN, MAX, SURFACE)                                     \
-    CP_STATIC_ASSERT(sizeof(KEYWORD) <= PARSE_KW_MAX, kw_##OWNER##_##NAME);
+    CP_STATIC_ASSERT(sizeof(KEYWORD) <= PARSE_KW_MAX && (MIN) <= (MAX) &&                          \
+                         (MAX) <= JOB_MAX_NUMBERS && 3 + (MAX) <= JOB_MAX_TOKENS &&                \
+                         (JOB_ARGS_##SHAPE != JOB_ARGS_UINT_NUMBERS_OPTION || (MIN) == (MAX)),     \
+                     kw_##OWNER##_##NAME);
 #define CP_CMD_WORD(CMD, WORD, TEXT, NUMBERS, VALUE)                                               \
-    CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, word_##WORD);
+    CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255 &&                             \
+                         (NUMBERS) <= JOB_MAX_NUMBERS && 3 + (NUMBERS) <= JOB_MAX_TOKENS,          \
+                     word_##WORD);
 #define CP_CMD_OPTION(CMD, WORD, TEXT, VALUE)                                                      \
     CP_STATIC_ASSERT(sizeof(TEXT) <= PARSE_KW_MAX && (VALUE) <= 255, option_##WORD);
 #include "commands.def"
@@ -157,7 +166,7 @@ void job_geom_fill(struct job *j)
     if (j->kind == PATH_CANAL) {
         j->geom.canal = j->canal;
     }
-#if PATH_HAVE_DRC
+#if CP_WITH_DRC
     if (j->kind == PATH_DRC) { /* the EDGE fillet's radius law: the canal's RADIUS */
         j->geom.drc.radius = j->canal.radius;
         for (i = 0; i < 4u; i++) {
@@ -327,7 +336,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         return CP_ST_BAD_ARITY;
     }
     if (uint) { /* the first argument is an unsigned number */
-        s = parse_uint(t->line + t->st[first], t->ln[first], 0xFFFFFFFFu, &a->u);
+        s = parse_uint(t->line + t->st[first], t->ln[first], UINT32_MAX, &a->u);
         if (s != CP_ST_OK) {
             return s;
         }

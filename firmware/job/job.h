@@ -49,7 +49,7 @@ enum job_format {
 /* Most tokens of one command line (keyword included). */
 #define JOB_MAX_TOKENS 20u
 
-#define JOB_RXBUF_MIN 96u /* >= the longest stream line (proto.h PROTO_GCODE_MAX) */
+#define JOB_RXBUF_MIN 96u /* >= the longest stream line (out_gcode.h OUT_GCODE_LINE_MAX) */
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
 #define JOB_FEED_MIN CP_R(0.05) /* smallest non-zero FEED: F is printed with 1 decimal */
@@ -117,7 +117,8 @@ enum job_shape {
     JOB_ARGS_WORD_NUMBERS_OPTION, /* as WORD_THEN_NUMBERS, but a word without numbers takes
                                      nothing more (error:9), and one with numbers may end
                                      with an option word, which the hook checks after its
-                                     ranges (JOB_BAD_WORD: error:9) (TOOL) */
+                                     ranges: its hook MUST answer error:9 for
+                                     option == JOB_BAD_WORD (TOOL) */
     JOB_ARGS_UINT_NUMBERS_OPTION, /* an unsigned number, MIN numbers, then, if the command
                                       has options, an optional option word, checked before
                                       the arity and the numbers (error:9) (LINES, CIRCLES) */
@@ -143,7 +144,7 @@ struct job_args {
     cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
 };
 
-/* A model's hooks, one set per row of models.def (firmware/job_<name>.c, declared here
+/* A model's hooks, one set per row of models.def (firmware/job/job_<name>.c, declared here
  * from the rows), called directly from job.c (no function pointers: the static stack
  * analysis sees every edge):
  *   int  job_<m>_command(struct job *j, struct job_args *a)
@@ -163,7 +164,9 @@ struct job_args {
  *   channel  SECTION, AXES, SECTIONS CLEAR; defaults: no section; ready with a SECTION
  *            and LINES or CIRCLES
  *   drc      POINT, POINTS CLEAR, THICKEN, EDGE; defaults: no point, THICKEN AUTO,
- *            EDGE OFF; ready with a POINT (EDGE ON: and RADIUS) */
+ *            EDGE OFF; ready with a POINT (EDGE ON: and RADIUS)
+ *   plane    STRIP (the example model, test builds only); defaults: no strip; ready
+ *            with STRIP and LINES */
 #define CP_MODEL(NAME, name, WITH, WORD)                                                           \
     int job_##name##_command(struct job *j, struct job_args *a);                                   \
     void job_##name##_defaults(union path_geom *g);                                                \

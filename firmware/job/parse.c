@@ -25,15 +25,15 @@ int parse_is(const char *s, size_t n, const char *kw)
     return kw[n] == '\0';
 }
 
-unsigned parse_kw(const char *s, size_t n, const char *tab, unsigned cnt)
+int parse_is_any(const char *s, size_t n, const char *const *kws, unsigned cnt)
 {
-    unsigned k, i;
-    for (k = 0; k < cnt && !parse_is(s, n, tab); k++) {
-        for (i = 0; i < PARSE_KW_MAX && tab[i] != '\0'; i++) { /* to the next keyword */
+    unsigned k;
+    for (k = 0; k < cnt; k++) {
+        if (parse_is(s, n, kws[k])) {
+            return 1;
         }
-        tab += i + 1u;
     }
-    return k;
+    return 0;
 }
 
 /* 10^e for 0 <= e <= 40 by squaring (exact up to 10^10 in float, 10^22 in double). */
@@ -51,6 +51,9 @@ static CP_NOINLINE cp_real pow10_real(unsigned e)
     return r;
 }
 
+/* The spellings of a non-finite number, which parse_real refuses with their own code. */
+static const char *const nonfinite_words[3] = {"NAN", "INF", "INFINITY"};
+
 int parse_real(const char *s, size_t n, cp_real *out)
 {
     size_t i = 0;
@@ -65,7 +68,7 @@ int parse_real(const char *s, size_t n, cp_real *out)
         neg = s[0] == '-';
         i = 1;
     }
-    if (parse_kw(s + i, n - i, "NAN\0INF\0INFINITY", 3u) < 3u) {
+    if (parse_is_any(s + i, n - i, nonfinite_words, 3u)) {
         return CP_ST_NONFINITE;
     }
     /* digits, with at most one '.' among them: a kept digit after it scales by 1/10,
@@ -152,7 +155,7 @@ int parse_uint(const char *s, size_t n, uint32_t max, uint32_t *out)
             return CP_ST_BAD_NUMBER; /* "12x" is not a number, even if 12 is too large */
         }
         d = (uint32_t)(s[i] - '0');
-        if (over || v > (0xFFFFFFFFu - d) / 10u) {
+        if (over || v > (UINT32_MAX - d) / 10u) {
             over = 1;
         } else {
             v = v * 10u + d;

@@ -38,9 +38,10 @@ unsigned parse_split(const char *line, size_t len, uint16_t *start, uint16_t *tl
 /* Case-insensitive comparison of s[0..n) with an upper-case keyword. */
 int parse_is(const char *s, size_t n, const char *kw);
 
-/* Index of s[0..n) (parse_is) among the cnt upper-case keywords packed in tab, each
- * ended by its NUL and shorter than PARSE_KW_MAX ("RUN\0RESUME"), or cnt if none. */
+/* 1 if s[0..n) is one of the cnt upper-case keywords kws[0..cnt) (parse_is), else 0. */
+int parse_is_any(const char *s, size_t n, const char *const *kws, unsigned cnt);
+
+/* Longest keyword of commands.def, NUL included (job.c asserts it row by row). */
 #define PARSE_KW_MAX 16u
-unsigned parse_kw(const char *s, size_t n, const char *tab, unsigned cnt);
 
 #endif /* PARSE_H */

@@ -482,9 +482,9 @@ static int circles_nodes(const struct canal_path *tp, uint32_t gsteps, cp_real t
  * sagitta is <= SAG_MARGIN tol and aim the h^2 estimate at the same. */
 static const struct raster_rule canal_rule[2] = {
     [RASTER_LINES] = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 16u, .pilot = 0u,
-                      .grow_shift = 31u, .clamp = 1u},
+                      .grow_shift = RASTER_GROW_BY_ONE, .clamp = 1u},
     [RASTER_CIRCLES] = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 16u, .pilot = 0u,
-                        .grow_shift = 31u, .clamp = 0u}};
+                        .grow_shift = RASTER_GROW_BY_ONE, .clamp = 0u}};
 
 /* Fix the grid of either mode, refining g by the search of raster_fit (canal_rule; at most
  * RASTER_FIT_ROUNDS + 1 walks), then the counts the stream needs. g is what the rounds

@@ -658,7 +658,7 @@ static CP_NOINLINE int walk(struct gsr_path *it, cp_real *sag)
  * verify with the midpoint sagitta <= SAG_MARGIN tol, at least + 1 per round, an estimate
  * above the maximum tried at the maximum. */
 static const struct raster_rule gsr_rule = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 8u,
-                                            .pilot = 0u, .grow_shift = 31u, .clamp = 1u};
+                                            .pilot = 0u, .grow_shift = RASTER_GROW_BY_ONE, .clamp = 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)

@@ -54,13 +54,27 @@ int raster_seek(struct raster_head *h, uint32_t k)
 void raster_fit_begin(struct raster_fit *f, const struct raster_cfg *c,
                       const struct raster_rule *rule)
 {
-    unsigned dl = c->link == RASTER_LINK_AUTO && c->n > 1u;
     f->rule = rule;
     f->tol = c->tol > CP_R(0.0) ? c->tol : CP_R(1e-3);
-    f->derive = (uint8_t)((unsigned)(c->steps == 0u) | (dl << 1));
-    f->m[0] = c->steps ? c->steps : rule->start;
-    f->m[1] = (dl || c->n < 2u ? 0u : (uint32_t)c->link) + 1u;
+    f->derive = 0u;
     f->round = 0u;
+    /* steps: given, or derived from the rule's start */
+    if (c->steps == 0u) {
+        f->derive |= RASTER_FIT_STEPS;
+        f->m[0] = rule->start;
+    } else {
+        f->m[0] = c->steps;
+    }
+    /* link segments: derived from 1 (RASTER_LINK_AUTO with two lines or more), else
+     * the given link points + 1 (1 for a single line: there is no link) */
+    if (c->n < 2u) {
+        f->m[1] = 1u;
+    } else if (c->link == RASTER_LINK_AUTO) {
+        f->derive |= RASTER_FIT_LINK;
+        f->m[1] = 1u;
+    } else {
+        f->m[1] = (uint32_t)c->link + 1u;
+    }
 }
 
 /* Per derived count q (steps, then link segments): verified counts stay (not on a pilot

@@ -11,7 +11,7 @@
  *   block j (j = 0..n-1) = line j (steps + 1 points) + the link j -> j + 1 (link points,
  *   none after the last line);  count = n (steps + 1) + (n - 1) link.
  *
- * Users: the model iterators canal_path.c, gsr.c, channel.c, drc.c (*_path_*), path.c. What a line is, where a point lies and how a sagitta is measured stay
+ * Users: the model iterators canal_path.c, gsr.c, channel.c, drc.c, plane.c (*_path_*), path.c. What a line is, where a point lies and how a sagitta is measured stay
  * in the models; this module only does the integer and control-flow parts, so every
  * model keeps its own geometry and every function here is small and cannot loop.
  *
@@ -191,10 +191,18 @@ struct raster_rule {
     uint8_t pilot;      /* 1: the first walk is a pilot: every derived count is re-estimated
                            from it, up or down (even a verified one); 0: only grown */
     uint8_t grow_shift; /* a count re-estimated after the pilot (or any count, pilot 0) grows
-                           by at least 1 + (m >> grow_shift): 0..31 (31: by at least 1) */
+                           by at least 1 + (m >> grow_shift): 0..31 (RASTER_GROW_BY_ONE:
+                           by at least 1) */
     uint8_t clamp;      /* 1: an estimate above the maximum is tried at the maximum (CP_ERR_TOL
                            when the maximum itself fails); 0: CP_ERR_TOL at once */
 };
+
+/* raster_fit.derive: which counts the search derives (bit q for m[q]). */
+#define RASTER_FIT_STEPS 0x01u
+#define RASTER_FIT_LINK 0x02u
+
+/* raster_rule.grow_shift for "grow by at least 1" (m >> 31 is 0 for every count). */
+#define RASTER_GROW_BY_ONE 31u
 
 /* The search state (the caller's; read m[] between the calls, write nothing). */
 struct raster_fit {
@@ -202,7 +210,8 @@ struct raster_fit {
     cp_real tol;                    /* mm: cfg tol, or 1 um when tol == 0 (links only) */
     uint32_t m[2];                  /* segments: m[0] = steps (1..CP_MAX_STEPS), m[1] = link
                                        + 1 (1..CP_MAX_LINK + 1) */
-    uint8_t derive;                 /* bit q: m[q] is derived (else given, never changed) */
+    uint8_t derive;                 /* RASTER_FIT_STEPS, RASTER_FIT_LINK: m[0], m[1] is derived
+                                       (else given, never changed) */
     uint8_t round;                  /* walks measured so far */
 };
 

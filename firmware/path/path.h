@@ -2,39 +2,23 @@
  * SPDX-License-Identifier: MIT
  *
  * The stream (proto.c) pulls points from one `struct path`: a tagged union of the
- * models' iterators, each yielding exactly path_count() `struct raster_pt` with
- * the conventions of canal_path.h (zigzag lines, link points, fixed counts decided
- * at init, seek(k) reproducing point k bit for bit). The raster request (mode,
- * n, u0, u1, steps/tol, link, tool, output) is the job's `struct raster_cfg`
- * for every model; the canal model also takes its geometry from it (cfg.surf),
- * the other models from `union path_geom`.
+ * models' iterators, each yielding exactly path_count() `struct raster_pt` with the
+ * conventions of raster.h (zigzag lines, link points, fixed counts decided at init,
+ * seek(k) reproducing point k bit for bit). The raster request (mode, n, u0, u1,
+ * steps/tol, link, tool, output) is the job's `struct raster_cfg` for every model; each
+ * model's geometry is its member of `union path_geom` (the canal's too: job_geom_fill
+ * puts it there at RUN).
  *
- * Models: firmware/models/models.def, one row each (the SURFACE word, the module prefix, the
- * compile-time switch). From it come enum path_kind, the iterator union of struct path,
- * the dispatch of path.c, the job's per-model hooks (job.c) and the $I model list:
+ * Models: firmware/models/models.def, one row each (the SURFACE word, the module prefix,
+ * the compile-time switch). From it come enum path_kind, the iterator union of struct
+ * path, the dispatch of path.c, the job's per-model hooks (job.c) and the $I model list:
  *   PATH_CANAL    canal surface touching the floor along a plane curve (seed 000)
- *   PATH_GSR      generalized surface of revolution (seed 003)        [issue 7]
- *   PATH_CHANNEL  channel surface from cross-sections (seed 002)      [issue 5]
- *   PATH_DRC      discretely represented curve, thickened (seed 001)  [issue 6]
+ *   PATH_GSR      generalized surface of revolution (seed 003)
+ *   PATH_CHANNEL  channel surface from cross-sections (seed 002)
+ *   PATH_DRC      discretely represented curve, thickened (seed 001)
+ *   PATH_PLANE    the example model, a flat strip (test builds only)
  * A kind whose model is not compiled in is refused by SURFACE (error:9).
- *
- * HOW TO ADD A MODEL <m> (kind PATH_<M>): one row in each table, and its own files:
- *   1. firmware/models/models.def: CP_MODEL(<M>, <m>, CP_WITH_<M>, "<WORD>") (appended), and
- *      CP_WITH_<M> in cp_config.h.
- *   2. firmware/<m>.h, <m>.c: struct <m>_cfg (geometry, plain data) and an iterator
- *      struct <m>_path with
- *        int      <m>_path_init(struct <m>_path *, const struct <m>_cfg *,
- *                               const struct raster_cfg *raster);
- *        uint32_t <m>_path_count(const struct <m>_path *);
- *        int      <m>_path_next(struct <m>_path *, struct raster_pt *);
- *        int      <m>_path_seek(struct <m>_path *, uint32_t k);
- *      and the fields count (0 after a failed init), k (points emitted), n, steps,
- *      link, mode. Include <m>.h below (union path_geom and struct path follow).
- *   3. firmware/job_<m>.c: job_<m>_command, job_<m>_defaults, job_<m>_ready (job.h
- *      declares them from the row); its commands as rows of firmware/job/commands.def
- *      (OWNER <M>, SURFACE OWN).
- *   4. its cp_err codes (cp_types.h): rows appended to cp_status.def (the FROM column).
- *   5. docs/PROTOCOL.md: the commands; tests/ref_<m>.c; host_sim/judge_<m>.c.
+ * Adding a model: docs/ARCHITECTURE.md (its header's #include goes below).
  */
 #ifndef PATH_H
 #define PATH_H
@@ -59,13 +43,6 @@ enum path_kind {
 #undef CP_MODEL
     PATH_KINDS
 };
-
-/* 1 when the model is compiled in (cp_config.h CP_WITH_<M>; for tests: the firmware
- * reads models.def's WITH column, path_has()). The types stay declared either way
- * (struct layouts do not depend on the choice). */
-#define PATH_HAVE_GSR CP_WITH_GSR
-#define PATH_HAVE_CHANNEL CP_WITH_CHANNEL
-#define PATH_HAVE_DRC CP_WITH_DRC
 
 /* The geometry of the model of `kind` (the job's SURFACE): member <name> of models.def. */
 union path_geom {
@@ -94,8 +71,8 @@ struct path {
     struct path_info info; /* valid after a successful path_init */
 };
 
-/* Initialise the iterator of model `kind` on the raster (and, for the canal, the
- * geometry) in `raster` and the geometry in `geom` (the job's union, for every kind).
+/* Initialise the iterator of model `kind` on the raster `raster` and the model's
+ * geometry, member <name> of `geom` (the job's union).
  * Errors: CP_ERR_INVAL for a kind that is not compiled in, or raster or geom NULL, else
  * the model's init codes (canal_path_init for the canal). On error p->info.count is 0. */
 CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,

@@ -3,7 +3,7 @@
  * and quantisation of the stream.
  * SPDX-License-Identifier: MIT
  *
- * An output format is one module firmware/out_<name>.[ch] (prefix out_<name>_): its
+ * An output format is one module firmware/proto/out_<name>.[ch] (prefix out_<name>_): its
  * state during a run (struct out_<name>, a member of the union `out` in struct proto),
  * and the calls proto.c makes directly at its seams - start a run, emit the next
  * stream item, take what the peer sends, finish the run (see out_gcode.h, out_frames.h).

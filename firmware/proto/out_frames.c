@@ -38,11 +38,13 @@ static int encode_point(const struct out_run *run, struct path *path, uint32_t i
         return e;
     }
     frame_put_u32(pl, k);
+    /* position in 0.1 um (int32 x, y, z at 4, 8, 12), normal in 1/32767 (int16 at 16, 18,
+     * 20), line and index (22, 24): frame.h's POINT payload */
     frame_put_u32(pl + 4, (uint32_t)out_quantize(pt.p.x, CP_R(10000.0)));
-    frame_put_u16(pl + 16, (uint16_t)(int16_t)out_quantize(pt.n.x, CP_R(32767.0)));
     frame_put_u32(pl + 8, (uint32_t)out_quantize(pt.p.y, CP_R(10000.0)));
-    frame_put_u16(pl + 18, (uint16_t)(int16_t)out_quantize(pt.n.y, CP_R(32767.0)));
     frame_put_u32(pl + 12, (uint32_t)out_quantize(pt.p.z, CP_R(10000.0)));
+    frame_put_u16(pl + 16, (uint16_t)(int16_t)out_quantize(pt.n.x, CP_R(32767.0)));
+    frame_put_u16(pl + 18, (uint16_t)(int16_t)out_quantize(pt.n.y, CP_R(32767.0)));
     frame_put_u16(pl + 20, (uint16_t)(int16_t)out_quantize(pt.n.z, CP_R(32767.0)));
     frame_put_u16(pl + 22, (uint16_t)pt.line);
     frame_put_u16(pl + 24, pt.index);

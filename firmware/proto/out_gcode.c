@@ -39,9 +39,11 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
         (void)fmt_u32(out, cap, &pos, idx);
         out[pos++] = ' ';
     }
-    if (idx + 2u == run->lead) { /* only with checksums: number this run from N1 */
+    /* the header's lines are the last `lead` lines before the points: the modes line
+     * last, the line-number reset (checksums only) before it */
+    if (idx < run->lead && run->lead - idx == 2u) { /* checksums: number this run from N1 */
         (void)fmt_str(out, cap, &pos, "M110 N0");
-    } else if (idx + 1u == run->lead) {
+    } else if (idx < run->lead) { /* the modes line, just before the first point */
         (void)fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
         struct raster_pt pt;

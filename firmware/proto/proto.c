@@ -124,7 +124,8 @@ static void reply_info(struct proto *p)
  * point: RESUME). */
 static void reply_report(struct proto *p)
 {
-    static const char names[3][6] = {"<Idle", "<Run", "<Hold"};
+    static const char *const names[3] = {
+        [PROTO_IDLE] = "<Idle", [PROTO_RUN] = "<Run", [PROTO_HOLD] = "<Hold"};
     uint32_t m = path_count(&p->path), k, block;
     tx_str(p, names[p->state]);
     if (p->state == PROTO_IDLE) {
@@ -287,6 +288,9 @@ static void line_trim(struct proto *p)
     p->line_len = (uint16_t)(b - a);
 }
 
+/* The commands that answer the version and limits line. */
+static const char *const info_words[2] = {"$I", "HELLO"};
+
 static void exec_line(struct proto *p)
 {
     uint32_t k = 0;
@@ -309,7 +313,7 @@ static void exec_line(struct proto *p)
         }
         return;
     }
-    if (parse_kw(p->line, p->line_len, "$I\0HELLO", 2u) < 2u) {
+    if (parse_is_any(p->line, p->line_len, info_words, 2u)) {
         reply_info(p);
         reply_status(p, CP_ST_OK);
         return;
