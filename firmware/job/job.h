@@ -49,7 +49,7 @@ enum job_format {
 /* Most tokens of one command line (keyword included). */
 #define JOB_MAX_TOKENS 20u
 
-#define JOB_RXBUF_MIN 96u /* >= the longest stream line (proto.h PROTO_GCODE_MAX) */
+#define JOB_RXBUF_MIN 96u /* >= the longest stream line (out_gcode.h OUT_GCODE_LINE_MAX) */
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
 #define JOB_FEED_MIN CP_R(0.05) /* smallest non-zero FEED: F is printed with 1 decimal */
