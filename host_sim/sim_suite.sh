@@ -1,9 +1,10 @@
 #!/bin/sh
 # sim_suite.sh - the RUN suites of host_sim (mk/sim.mk: sim-run-native, sim-run-qemu,
-# sim-baud, sim-faults, sim-resume, sim-identical; docs/HOST_SIM.md).
+# sim-baud, sim-faults, sim-resume, sim-identical, sim-models, example-model;
+# docs/HOST_SIM.md).
 # SPDX-License-Identifier: MIT
 #
-# Usage: sh host_sim/sim_suite.sh run-native|run-qemu|baud|faults|resume|identical
+# Usage: sh host_sim/sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example
 # Each case is one or two host_sim sessions (exit 0 required) plus, for resume and
 # identical, a byte comparison. Prints one line per case and closes with
 # "<suite>: N passed, N failed"; exits 1 if any case failed.
@@ -11,7 +12,7 @@
 #      SIM_RUN_TIMEOUT (native reply timeout, ms, 5000), SIM_QEMU_TIMEOUT (20000).
 # Timeouts (the rule of mk/m4f.mk: >= 5x the unloaded run time, measured 2026-11-26):
 # the reply timeouts bound a reply (<= 6 ms, QEMU boot to the first answer <= 45 ms) and
-# a silence within a RUN (the firmware's retransmit timer PROTO_RTO_MS is 250 ms); a whole
+# a silence within a RUN (the firmware's retransmit timer OUT_FRAMES_RTO_MS is 250 ms); a whole
 # session takes <= 13 s (baud: the paced paper job), so `timeout 600` is a hang guard only.
 B=${BUILD:-build}
 HS=$B/host/host_sim
@@ -137,8 +138,8 @@ identical)
     ;;
 models)
     # the seed 001-003 models (SURFACE GSR | CHANNEL | DRC): every tests/jobs/model_<m>_*.job,
-    # judged, natively (all models) and under QEMU (the product image fw.elf: all four
-    # models), and the two raw RUN streams byte-identical
+    # judged, natively (all models) and under QEMU (the all-features image fw.elf: all
+    # four models), and the two raw RUN streams byte-identical
     for f in "$J"/model_*.job; do
         [ -f "$f" ] || continue
         job=$(basename "$f" .job)
@@ -153,7 +154,7 @@ models)
         if [ $r0 -eq 1 ] && grep -q "FAIL judge $m-" "$OUT/${job}_wrong.out"; then r0=0; else r0=1; fi
         result "${job}_judge_fails" $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge $m-[a-z]*" "$OUT/${job}_wrong.out" | tr '\n' ' '))"
         if command -v "$QEMU" >/dev/null 2>&1; then
-            # the product image, all four models (mk/m4f.mk: fw.elf = fw-all.elf)
+            # the all-features image, all four models (mk/m4f.mk: fw.elf = fw-all.elf)
             ELF=$B/m4f/fw.elf
             hs "${job}_qemu" qemu --job "$f" --csv "$OUT/${job}_qemu.csv" --raw "$OUT/${job}_qemu.raw"
             r2=$?
