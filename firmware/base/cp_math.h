@@ -52,6 +52,17 @@ static inline void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
     *s = sin(x);
     *c = cos(x);
 }
+
+/* the inlined halves (the float build's cp_sincos_in1/in2): the stages themselves */
+static inline void cp_sincos_in1(cp_real x, struct cp_sincos_st *st)
+{
+    cp_sincos_stage1(x, st);
+}
+
+static inline void cp_sincos_in2(const struct cp_sincos_st *st, cp_real *s, cp_real *c)
+{
+    cp_sincos_stage2(st, s, c);
+}
 #else
 /* The float kernel of cp_sincos in two always-inline halves (cp_sincos_in1, cp_sincos_in2);
  * cp_sincos_kernel, the two inlined together, serves the per-point jet (canal_jet). */
@@ -118,8 +129,9 @@ static CP_ALWAYS_INLINE void cp_sincos_kernel(cp_real x, cp_real *s, cp_real *c)
     cp_sincos_in2(&st, s, c);
 }
 
-/* The stages out of line (cp_math.c: one copy of each, which cp_sincos calls too); only
- * the per-point jet inlines the kernel. */
+/* The stages out of line (cp_math.c: one copy of each, which cp_sincos calls too); the
+ * per-point jet inlines the kernel and canal_path.c's label halves inline cp_sincos_in1
+ * and cp_sincos_in2 (the same operations: a line's last point pays no call). */
 void cp_sincos_stage1(cp_real x, struct cp_sincos_st *st);
 void cp_sincos_stage2(const struct cp_sincos_st *st, cp_real *s, cp_real *c);
 

@@ -706,8 +706,8 @@ static CP_ALWAYS_INLINE int finish(const struct canal_point *cp, cp_real t, int 
 
 /* Labels of LINES mode, by position r (travel order) in line jl: at its first point
  * the label of jl is taken from the next-line cache; at the point before its last the
- * first half of line jl + 1's label is made (cp_sincos_stage1), at its last point the
- * second half (stage2), so no point pays a whole sincos. A point whose cache is not
+ * first half of line jl + 1's label is made (cp_sincos_in1, inlined), at its last point
+ * the second half (cp_sincos_in2), so no point pays a whole sincos. A point whose cache is not
  * ready (impossible after canal_path_seek, which makes both labels; kept as a guard)
  * makes what it needs itself. LAMBDA labels need no sincos: made at once. */
 static CP_NOINLINE void line_labels(struct canal_path *tp, uint32_t jl, uint32_t r)
@@ -731,12 +731,12 @@ static CP_NOINLINE void line_labels(struct canal_path *tp, uint32_t jl, uint32_t
         return;
     }
     if (tp->st_line != (int32_t)nx) {
-        cp_sincos_stage1(line_half_angle(tp, nx), &tp->st);
+        cp_sincos_in1(line_half_angle(tp, nx), &tp->st);
         tp->st_line = (int32_t)nx;
     }
     if (r >= tp->head.steps) {
         cp_real sn, cs;
-        cp_sincos_stage2(&tp->st, &sn, &cs);
+        cp_sincos_in2(&tp->st, &sn, &cs);
         tp->lab2_a = tp->q0 * cs;
         tp->lab2_b = sn;
         tp->lab2_line = (int32_t)nx;
