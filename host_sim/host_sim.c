@@ -852,6 +852,9 @@ static int job_command(struct sim_session *s, size_t i)
         return 1;
     }
     reply_row(c, &r, ms, esc);
+    if (!r.error) {
+        sim_out_job_line(c->text); /* TOL, STEPS, TOOL for the SVG's caption */
+    }
     return 0;
 }
 

@@ -100,6 +100,11 @@ void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, 
     judges[surface].run_begin(points, first, mode, n, steps, link);
 }
 
+const char *sim_check_surface(void)
+{
+    return judges[surface].word;
+}
+
 void sim_check_point(uint32_t k, double x, double y, double z, const double *n)
 {
     if (perturb_k >= 0 && (long)k == perturb_k) {

@@ -43,6 +43,9 @@ int sim_check_job_line(const char *line);
 void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
                          unsigned link);
 
+/* The SURFACE word of the active row ("CANAL" until a SURFACE line selects another). */
+const char *sim_check_surface(void);
+
 /* One received point k (ordinal in the job), mm; n is the unit normal (FRAMES) or
  * NULL (GCODE). Values are as received (quantized to 0.1 um). */
 void sim_check_point(uint32_t k, double x, double y, double z, const double *n);

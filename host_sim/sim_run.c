@@ -153,6 +153,7 @@ static void run_begin(struct run *u, uint32_t points, uint32_t first, int mode, 
     r->link = link;
     u->began = 1;
     sim_check_run_begin(points, first, mode, n, steps, link);
+    sim_out_run_begin(sim_check_surface(), points, first, mode, n, steps, link);
 }
 
 /* Fixed-point "[-]I[.FFFF]" (at most 4 decimals) -> 0.1 um; 0 on success. */
