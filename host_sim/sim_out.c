@@ -331,7 +331,7 @@ static void view_fit(struct view *w, int iso, const struct box3 *b, int with_ori
     w->ox = SVG_PX0[iso] + (SVG_PW - w->w) / 2.0;
     w->oy = SVG_PY0 + (SVG_PH - w->h) / 2.0;
     if (!iso) {
-        w->step = nice_step(du > dv ? du : dv, 7.0);
+        w->step = nice_step(du > dv ? du : dv, 10.0);
     }
 }
 
@@ -418,27 +418,37 @@ static void svg_axes_top(FILE *f, const struct view *w)
         fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>"
                    "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>\n"
                    "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
-                   "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0</text>\n",
-                x0, Y, x1, Y, X, y0, X, y1, X, Y, X + 5, Y + 13, SVG_FONT);
+                   "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin</text>\n",
+                x0, Y, x1, Y, X, y0, X, y1, X, Y, X - 5, Y + 13, SVG_FONT);
     } else {
         fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0 outside this view</text>\n",
                 x0 + 4, y0 + 12, SVG_FONT);
     }
 }
 
+/* a dimension label on a white ground, centred at x, y (rotated by rot degrees) */
+static void svg_dim(FILE *f, double x, double y, int rot, const char *text)
+{
+    double hw = 3.3 * (double)strlen(text) + 3.0;
+    fprintf(f, "<g transform='translate(%.2f %.2f) rotate(%d)'><rect x='%.2f' y='-8' width='%.2f' "
+               "height='11' fill='white' fill-opacity='0.85'/><text x='0' y='0' %s font-size='11' "
+               "text-anchor='middle' fill='#333'>%s</text></g>\n", x, y, rot, -hw, 2.0 * hw, SVG_FONT,
+            text);
+}
+
 /* top view: the part's extent, dashed, with its width and depth in mm */
 static void svg_box_top(FILE *f, const struct view *w, const struct box3 *b)
 {
     double lo[3] = {b->lo[0], b->hi[1], 0}, hi[3] = {b->hi[0], b->lo[1], 0}, X0, Y0, X1, Y1;
+    char t[48];
     view_map(w, lo, &X0, &Y0);
     view_map(w, hi, &X1, &Y1);
     fprintf(f, "<rect x='%.2f' y='%.2f' width='%.2f' height='%.2f' fill='none' stroke='#555' "
                "stroke-width='0.7' stroke-dasharray='2,3'/>\n", X0, Y0, X1 - X0, Y1 - Y0);
-    fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle' fill='#333'>"
-               "X %.3f mm</text>\n", (X0 + X1) / 2, Y0 - 5, SVG_FONT, b->hi[0] - b->lo[0]);
-    fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle' fill='#333' "
-               "transform='rotate(90 %.2f %.2f)'>Y %.3f mm</text>\n",
-            X1 + 6, (Y0 + Y1) / 2, SVG_FONT, X1 + 6, (Y0 + Y1) / 2, b->hi[1] - b->lo[1]);
+    snprintf(t, sizeof t, "X %.3f mm", b->hi[0] - b->lo[0]);
+    svg_dim(f, (X0 + X1) / 2, Y0 - 5, 0, t);
+    snprintf(t, sizeof t, "Y %.3f mm", b->hi[1] - b->lo[1]);
+    svg_dim(f, X0 - 5, (Y0 + Y1) / 2, -90, t);
 }
 
 /* isometric view: the part's box as a wireframe, the X, Y, Z axes from the origin with
@@ -477,8 +487,8 @@ static void svg_axes_iso(FILE *f, const struct view *w, const struct box3 *b, in
                 SVG_FONT, name[a]);
     }
     fprintf(f, "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
-               "<text x='%.2f' y='%.2f' %s font-size='10'>origin; axes %s mm each</text>\n",
-            X0, Y0, X0 + 6, Y0 + 14, SVG_FONT, fmt_mm(w->step, w->step, buf, sizeof buf));
+               "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin; axes %s mm</text>\n",
+            X0, Y0, X0 - 6, Y0 + 14, SVG_FONT, fmt_mm(w->step, w->step, buf, sizeof buf));
 }
 
 enum seg { SEG_F2, SEG_F1, SEG_LINK, SEG_RAPID, SEG_N };
@@ -652,7 +662,7 @@ static void svg_legend(FILE *f, int surface)
                             "fill='white' stroke='#000' stroke-width='1.2'/>", x + 6, y, x + 17, y - 3.5);
     legend_row(f, x, y, sw, "start (first point streamed), end (last point)");
     snprintf(sw, sizeof sw, "<rect x='%.1f' y='%.1f' width='26' height='8' fill='none' stroke='#555' "
-                            "stroke-width='0.7' stroke-dasharray='2,3'/>", x, y - 4);
+                            "stroke-width='0.7' stroke-dasharray='2,3'/>", x, y + 14);
     legend_row(f, x, y + 18, sw, "part extent: the points' bounding box, mm");
     snprintf(sw, sizeof sw, "<circle cx='%.1f' cy='%.1f' r='4' fill='none' stroke='#000'/>", x + 13, y + 36);
     legend_row(f, x, y + 36, sw, "origin (0, 0, 0) of the job's coordinates");
@@ -712,9 +722,9 @@ static void svg_write(const char *path)
         svg_marks(f, &w);
     }
     svg_legend(f, ngrid > 0u);
-    fprintf(f, "<text x='20' y='%d' %s font-size='10' fill='#555'>points as streamed by the firmware "
-               "and received intact by host_sim (--svg); tool: %s</text>\n</svg>\n",
-            SVG_H - 12, SVG_FONT, tool_text[0] ? "the TOOL line above says tip or centre" : "none");
+    fprintf(f, "<text x='20' y='%d' %s font-size='10' fill='#555'>the points as the firmware streamed "
+               "them and host_sim received them intact (a TOOL BALL job: the tool tip, or its centre "
+               "with CENTRE; no TOOL: surface points); Z up, mm</text>\n</svg>\n", SVG_H - 12, SVG_FONT);
     fclose(f);
 }
 unsigned long sim_out_close(void)
