@@ -24,6 +24,7 @@ struct out_run {
     unsigned n, steps, link;
     int rapid_in; /* reached by a move that was not streamed (a new RUN) */
     char word[16];
+    char tol[48], tool[48]; /* TOL / STEPS and TOOL of the job at RUN */
 };
 static struct out_run runs[SIM_OUT_RUNS_MAX];
 static unsigned nruns;
@@ -133,6 +134,8 @@ void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int
     r->link = link;
     r->rapid_in = rapid;
     snprintf(r->word, sizeof r->word, "%s", surface != NULL ? surface : "?");
+    snprintf(r->tol, sizeof r->tol, "%s", tol_text[0] ? tol_text : "TOL 1 \xc2\xb5m (chord, default)");
+    snprintf(r->tool, sizeof r->tool, "%s", tool_text[0] ? tool_text : "no TOOL: surface points");
 }
 
 void sim_out_job_line(const char *line)
@@ -584,20 +587,25 @@ static void run_text(unsigned r, char *buf, size_t bufsz)
     int o = snprintf(buf, bufsz, "%s n=%u, steps=%u, link=%u, %lu points", u->mode ? "CIRCLES" : "LINES",
                      u->n, u->steps, u->link, got);
     if (o > 0 && (size_t)o < bufsz && got != want) {
-        snprintf(buf + o, bufsz - (size_t)o, " of %lu%s", want, u->first ? " (resumed)" : "");
+        o += snprintf(buf + o, bufsz - (size_t)o, " of %lu", want);
+    }
+    if (o > 0 && (size_t)o < bufsz && u->first != 0u) {
+        snprintf(buf + o, bufsz - (size_t)o, " (RESUME %lu)", (unsigned long)u->first);
     }
 }
 
 /* the caption: the job's model, mode, n, steps, points, tolerance, tool, extent */
 static void svg_caption(FILE *f, const struct box3 *b)
 {
-    char line[512], rt[128];
-    unsigned r;
+    char line[640], rt[128];
+    unsigned r, st = 1, su = 1; /* the same TOL/STEPS, the same TOOL in every run */
     int o = snprintf(line, sizeof line, "SURFACE %s", runs[0].word);
     for (r = 1; r < nruns; r++) {
         if (strcmp(runs[r].word, runs[r - 1u].word) != 0 && o > 0 && (size_t)o < sizeof line) {
             o += snprintf(line + o, sizeof line - (size_t)o, ", then %s", runs[r].word);
         }
+        st = st && strcmp(runs[r].tol, runs[0].tol) == 0;
+        su = su && strcmp(runs[r].tool, runs[0].tool) == 0;
     }
     run_text(0, rt, sizeof rt);
     if (nruns == 1u) {
@@ -608,19 +616,20 @@ static void svg_caption(FILE *f, const struct box3 *b)
     fprintf(f, "<text x='20' y='24' %s font-size='16' font-weight='bold'>%s</text>\n", SVG_FONT, line);
     fprintf(f, "<text x='20' y='44' %s font-size='12'>%s \xc2\xb7 %s \xc2\xb7 part extent X %.3f \xc3\x97 "
                "Y %.3f \xc3\x97 Z %.3f mm (X %.3f..%.3f, Y %.3f..%.3f, Z %.3f..%.3f)</text>\n",
-            SVG_FONT, tol_text[0] ? tol_text : "TOL 1 \xc2\xb5m (chord, default)",
-            tool_text[0] ? tool_text : "no TOOL: surface points", b->hi[0] - b->lo[0], b->hi[1] - b->lo[1],
-            b->hi[2] - b->lo[2], b->lo[0], b->hi[0], b->lo[1], b->hi[1], b->lo[2], b->hi[2]);
-    for (r = 0, o = 0; r < nruns && nruns > 1u && r < 4u && (size_t)o < sizeof line; r++) {
+            SVG_FONT, st ? runs[0].tol : "TOL/STEPS per run", su ? runs[0].tool : "TOOL per run",
+            b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2], b->lo[0], b->hi[0], b->lo[1],
+            b->hi[1], b->lo[2], b->hi[2]);
+    for (r = 0, o = 0; r < nruns && nruns > 1u && o < 150; r++) {
         run_text(r, rt, sizeof rt);
-        o += snprintf(line + o, sizeof line - (size_t)o, "%srun %u: %s%s", r ? " \xc2\xb7 " : "", r + 1u,
-                      rt, runs[r].rapid_in ? " (rapid in)" : "");
+        o += snprintf(line + o, sizeof line - (size_t)o, "%srun %u: %s%s%s%s%s%s", r ? " \xc2\xb7 " : "",
+                      r + 1u, rt, runs[r].rapid_in ? " (rapid in)" : "", st ? "" : ", ",
+                      st ? "" : runs[r].tol, su ? "" : ", ", su ? "" : runs[r].tool);
     }
-    if (nruns > 4u && (size_t)o < sizeof line) {
-        snprintf(line + o, sizeof line - (size_t)o, " \xc2\xb7 %u more", nruns - 4u);
+    if (r < nruns) {
+        snprintf(line + o, sizeof line - (size_t)o, " \xc2\xb7 %u more", nruns - r);
     }
     if (nruns > 1u) {
-        fprintf(f, "<text x='20' y='62' %s font-size='12'>%s</text>\n", SVG_FONT, line);
+        fprintf(f, "<text x='20' y='62' %s font-size='11'>%s</text>\n", SVG_FONT, line);
     }
 }
 
