@@ -31,7 +31,6 @@ static unsigned nruns;
 static uint32_t next_k; /* k of the next point expected in this run */
 static char tol_text[48], tool_text[48];
 
-
 const char *sim_out_fixed4(int32_t v, char *buf)
 {
     uint32_t a = v < 0 ? (uint32_t)(-(int64_t)v) : (uint32_t)v;
@@ -115,8 +114,8 @@ void sim_out_point(const struct sim_out_pt *p)
 
 /* ---- the SVG: job facts ---------------------------------------------------------------- */
 
-void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int mode,
-                       unsigned n, unsigned steps, unsigned link)
+void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int mode, unsigned n,
+                       unsigned steps, unsigned link)
 {
     struct out_run *r;
     int rapid = nruns > 0u && npts > 0u && first != next_k;
@@ -134,7 +133,8 @@ void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int
     r->link = link;
     r->rapid_in = rapid;
     snprintf(r->word, sizeof r->word, "%s", surface != NULL ? surface : "?");
-    snprintf(r->tol, sizeof r->tol, "%s", tol_text[0] ? tol_text : "TOL 1 \xc2\xb5m (chord, default)");
+    snprintf(r->tol, sizeof r->tol, "%s",
+             tol_text[0] ? tol_text : "TOL 1 \xc2\xb5m (chord, default)");
     snprintf(r->tool, sizeof r->tool, "%s", tool_text[0] ? tool_text : "no TOOL: surface points");
 }
 
@@ -170,9 +170,9 @@ void sim_out_job_line(const char *line)
 
 #define SVG_W 1000
 #define SVG_H 660
-#define SVG_PY0 96.0  /* plot area of both views: y from here ... */
-#define SVG_PH 400.0  /* ... this high */
-#define SVG_PW 400.0  /* each view this wide, from SVG_PX0[view] */
+#define SVG_PY0 96.0 /* plot area of both views: y from here ... */
+#define SVG_PH 400.0 /* ... this high */
+#define SVG_PW 400.0 /* each view this wide, from SVG_PX0[view] */
 static const double SVG_PX0[2] = {70.0, 560.0};
 #define SVG_GRID_T 48  /* characteristic circles drawn */
 #define SVG_GRID_U 24  /* segments of each */
@@ -396,35 +396,45 @@ static void svg_axes_top(FILE *f, const struct view *w)
     double x0 = w->ox, y0 = w->oy, x1 = w->ox + w->w, y1 = w->oy + w->h, t, X, Y, m[3] = {0, 0, 0};
     double ulo = w->umin, uhi = w->umin + w->w / w->s, vlo = w->vmin, vhi = w->vmin + w->h / w->s;
     char b[32];
-    fprintf(f, "<rect x='%.2f' y='%.2f' width='%.2f' height='%.2f' fill='none' stroke='#444' "
-               "stroke-width='0.8'/>\n", x0, y0, w->w, w->h);
+    fprintf(f,
+            "<rect x='%.2f' y='%.2f' width='%.2f' height='%.2f' fill='none' stroke='#444' "
+            "stroke-width='0.8'/>\n",
+            x0, y0, w->w, w->h);
     for (t = ceil(ulo / w->step) * w->step; t <= uhi + 1e-9; t += w->step) { /* X */
         X = x0 + (t - ulo) * w->s;
-        fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#eee' stroke-width='0.6'/>"
-                   "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#444' stroke-width='0.8'/>"
-                   "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='middle'>%s</text>\n",
-                X, y0, X, y1, X, y1, X, y1 + 5, X, y1 + 16, SVG_FONT, fmt_mm(t, w->step, b, sizeof b));
+        fprintf(f,
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#eee' stroke-width='0.6'/>"
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#444' stroke-width='0.8'/>"
+                "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='middle'>%s</text>\n",
+                X, y0, X, y1, X, y1, X, y1 + 5, X, y1 + 16, SVG_FONT,
+                fmt_mm(t, w->step, b, sizeof b));
     }
     for (t = ceil(vlo / w->step) * w->step; t <= vhi + 1e-9; t += w->step) { /* Y = -v */
         Y = y0 + (t - vlo) * w->s;
-        fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#eee' stroke-width='0.6'/>"
-                   "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#444' stroke-width='0.8'/>"
-                   "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>%s</text>\n",
-                x0, Y, x1, Y, x0 - 5, Y, x0, Y, x0 - 7, Y + 3.5, SVG_FONT, fmt_mm(-t, w->step, b, sizeof b));
+        fprintf(f,
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#eee' stroke-width='0.6'/>"
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#444' stroke-width='0.8'/>"
+                "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>%s</text>\n",
+                x0, Y, x1, Y, x0 - 5, Y, x0, Y, x0 - 7, Y + 3.5, SVG_FONT,
+                fmt_mm(-t, w->step, b, sizeof b));
     }
-    fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle'>X mm</text>\n"
-               "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle' transform='rotate(-90 "
-               "%.2f %.2f)'>Y mm</text>\n",
-            (x0 + x1) / 2, y1 + 30, SVG_FONT, x0 - 44, (y0 + y1) / 2, SVG_FONT, x0 - 44, (y0 + y1) / 2);
+    fprintf(f,
+            "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle'>X mm</text>\n"
+            "<text x='%.2f' y='%.2f' %s font-size='11' text-anchor='middle' transform='rotate(-90 "
+            "%.2f %.2f)'>Y mm</text>\n",
+            (x0 + x1) / 2, y1 + 30, SVG_FONT, x0 - 44, (y0 + y1) / 2, SVG_FONT, x0 - 44,
+            (y0 + y1) / 2);
     view_map(w, m, &X, &Y);
     if (X >= x0 && X <= x1 && Y >= y0 && Y <= y1) {
-        fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>"
-                   "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>\n"
-                   "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
-                   "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin</text>\n",
+        fprintf(f,
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>"
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.7'/>\n"
+                "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
+                "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin</text>\n",
                 x0, Y, x1, Y, X, y0, X, y1, X, Y, X - 5, Y + 13, SVG_FONT);
     } else {
-        fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0 outside this view</text>\n",
+        fprintf(f,
+                "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0 outside this view</text>\n",
                 x0 + 4, y0 + 12, SVG_FONT);
     }
 }
@@ -433,10 +443,11 @@ static void svg_axes_top(FILE *f, const struct view *w)
 static void svg_dim(FILE *f, double x, double y, int rot, const char *text)
 {
     double hw = 3.3 * (double)strlen(text) + 3.0;
-    fprintf(f, "<g transform='translate(%.2f %.2f) rotate(%d)'><rect x='%.2f' y='-8' width='%.2f' "
-               "height='11' fill='white' fill-opacity='0.85'/><text x='0' y='0' %s font-size='11' "
-               "text-anchor='middle' fill='#333'>%s</text></g>\n", x, y, rot, -hw, 2.0 * hw, SVG_FONT,
-            text);
+    fprintf(f,
+            "<g transform='translate(%.2f %.2f) rotate(%d)'><rect x='%.2f' y='-8' width='%.2f' "
+            "height='11' fill='white' fill-opacity='0.85'/><text x='0' y='0' %s font-size='11' "
+            "text-anchor='middle' fill='#333'>%s</text></g>\n",
+            x, y, rot, -hw, 2.0 * hw, SVG_FONT, text);
 }
 
 /* top view: the part's extent, dashed, with its width and depth in mm */
@@ -446,8 +457,10 @@ static void svg_box_top(FILE *f, const struct view *w, const struct box3 *b)
     char t[48];
     view_map(w, lo, &X0, &Y0);
     view_map(w, hi, &X1, &Y1);
-    fprintf(f, "<rect x='%.2f' y='%.2f' width='%.2f' height='%.2f' fill='none' stroke='#555' "
-               "stroke-width='0.7' stroke-dasharray='2,3'/>\n", X0, Y0, X1 - X0, Y1 - Y0);
+    fprintf(f,
+            "<rect x='%.2f' y='%.2f' width='%.2f' height='%.2f' fill='none' stroke='#555' "
+            "stroke-width='0.7' stroke-dasharray='2,3'/>\n",
+            X0, Y0, X1 - X0, Y1 - Y0);
     snprintf(t, sizeof t, "X %.3f mm", b->hi[0] - b->lo[0]);
     svg_dim(f, (X0 + X1) / 2, Y0 - 5, 0, t);
     snprintf(t, sizeof t, "Y %.3f mm", b->hi[1] - b->lo[1]);
@@ -470,11 +483,14 @@ static void svg_axes_iso(FILE *f, const struct view *w, const struct box3 *b, in
         m0[o2] = m1[o2] = e & 2 ? b->hi[o2] : b->lo[o2];
         view_map(w, m0, &X0, &Y0);
         view_map(w, m1, &X1, &Y1);
-        fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.6' "
-                   "stroke-dasharray='2,3'/>\n", X0, Y0, X1, Y1);
+        fprintf(f,
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#999' stroke-width='0.6' "
+                "stroke-dasharray='2,3'/>\n",
+                X0, Y0, X1, Y1);
     }
     if (!with_origin) {
-        fprintf(f, "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0,0 outside this view</text>\n",
+        fprintf(f,
+                "<text x='%.2f' y='%.2f' %s font-size='10'>origin 0,0,0 outside this view</text>\n",
                 SVG_PX0[1], SVG_PY0 + 12, SVG_FONT);
         return;
     }
@@ -484,14 +500,18 @@ static void svg_axes_iso(FILE *f, const struct view *w, const struct box3 *b, in
         m1[0] = m1[1] = m1[2] = 0.0;
         m1[a] = w->step;
         view_map(w, m1, &X1, &Y1);
-        fprintf(f, "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#000' stroke-width='1.2'/>"
-                   "<text x='%.2f' y='%.2f' %s font-size='11' font-weight='bold' text-anchor='middle'>"
-                   "%s</text>\n", X0, Y0, X1, Y1, X0 + (X1 - X0) * 1.12, Y0 + (Y1 - Y0) * 1.12 + 4,
-                SVG_FONT, name[a]);
+        fprintf(f,
+                "<line x1='%.2f' y1='%.2f' x2='%.2f' y2='%.2f' stroke='#000' stroke-width='1.2'/>"
+                "<text x='%.2f' y='%.2f' %s font-size='11' font-weight='bold' text-anchor='middle'>"
+                "%s</text>\n",
+                X0, Y0, X1, Y1, X0 + (X1 - X0) * 1.12, Y0 + (Y1 - Y0) * 1.12 + 4, SVG_FONT,
+                name[a]);
     }
-    fprintf(f, "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
-               "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin; axes %s mm</text>\n",
-            X0, Y0, X0 - 6, Y0 + 14, SVG_FONT, fmt_mm(w->step, w->step, buf, sizeof buf));
+    fprintf(
+        f,
+        "<circle cx='%.2f' cy='%.2f' r='4' fill='none' stroke='#000' stroke-width='1'/>"
+        "<text x='%.2f' y='%.2f' %s font-size='10' text-anchor='end'>origin; axes %s mm</text>\n",
+        X0, Y0, X0 - 6, Y0 + 14, SVG_FONT, fmt_mm(w->step, w->step, buf, sizeof buf));
 }
 
 enum seg { SEG_F2, SEG_F1, SEG_LINK, SEG_RAPID, SEG_N };
@@ -556,12 +576,15 @@ static void svg_marks(FILE *f, const struct view *w)
     double m[3], X, Y;
     pt_mm(&pts[npts - 1u], m);
     view_map(w, m, &X, &Y);
-    fprintf(f, "<rect x='%.2f' y='%.2f' width='7' height='7' fill='white' stroke='#000' "
-               "stroke-width='1.2'/>\n", X - 3.5, Y - 3.5);
+    fprintf(f,
+            "<rect x='%.2f' y='%.2f' width='7' height='7' fill='white' stroke='#000' "
+            "stroke-width='1.2'/>\n",
+            X - 3.5, Y - 3.5);
     pt_mm(&pts[0], m);
     view_map(w, m, &X, &Y);
-    fprintf(f, "<circle cx='%.2f' cy='%.2f' r='5' fill='#ffd400' stroke='#000' stroke-width='1.2'/>"
-               "<text x='%.2f' y='%.2f' %s font-size='11' font-weight='bold'>start</text>\n",
+    fprintf(f,
+            "<circle cx='%.2f' cy='%.2f' r='5' fill='#ffd400' stroke='#000' stroke-width='1.2'/>"
+            "<text x='%.2f' y='%.2f' %s font-size='11' font-weight='bold'>start</text>\n",
             X, Y, X + 7, Y - 6, SVG_FONT);
 }
 /* what the model calls its families */
@@ -584,8 +607,8 @@ static void run_text(unsigned r, char *buf, size_t bufsz)
 {
     const struct out_run *u = &runs[r];
     unsigned long got = run_received(r), want = u->points - u->first;
-    int o = snprintf(buf, bufsz, "%s n=%u, steps=%u, link=%u, %lu points", u->mode ? "CIRCLES" : "LINES",
-                     u->n, u->steps, u->link, got);
+    int o = snprintf(buf, bufsz, "%s n=%u, steps=%u, link=%u, %lu points",
+                     u->mode ? "CIRCLES" : "LINES", u->n, u->steps, u->link, got);
     if (o > 0 && (size_t)o < bufsz && got != want) {
         o += snprintf(buf + o, bufsz - (size_t)o, " of %lu", want);
     }
@@ -611,19 +634,24 @@ static void svg_caption(FILE *f, const struct box3 *b)
     if (nruns == 1u) {
         snprintf(line + o, sizeof line - (size_t)o, " \xe2\x80\x94 %s", rt);
     } else {
-        snprintf(line + o, sizeof line - (size_t)o, " \xe2\x80\x94 %u runs, %lu points", nruns, npts);
+        snprintf(line + o, sizeof line - (size_t)o, " \xe2\x80\x94 %u runs, %lu points", nruns,
+                 npts);
     }
-    fprintf(f, "<text x='20' y='24' %s font-size='16' font-weight='bold'>%s</text>\n", SVG_FONT, line);
-    fprintf(f, "<text x='20' y='44' %s font-size='12'>%s \xc2\xb7 %s \xc2\xb7 part extent X %.3f \xc3\x97 "
-               "Y %.3f \xc3\x97 Z %.3f mm (X %.3f..%.3f, Y %.3f..%.3f, Z %.3f..%.3f)</text>\n",
-            SVG_FONT, st ? runs[0].tol : "TOL/STEPS per run", su ? runs[0].tool : "TOOL per run",
-            b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2], b->lo[0], b->hi[0], b->lo[1],
-            b->hi[1], b->lo[2], b->hi[2]);
+    fprintf(f, "<text x='20' y='24' %s font-size='16' font-weight='bold'>%s</text>\n", SVG_FONT,
+            line);
+    fprintf(
+        f,
+        "<text x='20' y='44' %s font-size='12'>%s \xc2\xb7 %s \xc2\xb7 part extent X %.3f \xc3\x97 "
+        "Y %.3f \xc3\x97 Z %.3f mm (X %.3f..%.3f, Y %.3f..%.3f, Z %.3f..%.3f)</text>\n",
+        SVG_FONT, st ? runs[0].tol : "TOL/STEPS per run", su ? runs[0].tool : "TOOL per run",
+        b->hi[0] - b->lo[0], b->hi[1] - b->lo[1], b->hi[2] - b->lo[2], b->lo[0], b->hi[0], b->lo[1],
+        b->hi[1], b->lo[2], b->hi[2]);
     for (r = 0, o = 0; r < nruns && nruns > 1u && o < 150; r++) {
         run_text(r, rt, sizeof rt);
-        o += snprintf(line + o, sizeof line - (size_t)o, "%srun %u: %s%s%s%s%s%s", r ? " \xc2\xb7 " : "",
-                      r + 1u, rt, runs[r].rapid_in ? " (rapid in)" : "", st ? "" : ", ",
-                      st ? "" : runs[r].tol, su ? "" : ", ", su ? "" : runs[r].tool);
+        o +=
+            snprintf(line + o, sizeof line - (size_t)o, "%srun %u: %s%s%s%s%s%s",
+                     r ? " \xc2\xb7 " : "", r + 1u, rt, runs[r].rapid_in ? " (rapid in)" : "",
+                     st ? "" : ", ", st ? "" : runs[r].tol, su ? "" : ", ", su ? "" : runs[r].tool);
     }
     if (r < nruns) {
         snprintf(line + o, sizeof line - (size_t)o, " \xc2\xb7 %u more", nruns - r);
@@ -649,13 +677,15 @@ static void svg_legend(FILE *f, int surface)
         if (seg_count[k] == 0u && k != SEG_LINK) {
             continue;
         }
-        snprintf(sw, sizeof sw, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' %s/>", x, y, x + 26, y,
-                 seg_style[k]);
+        snprintf(sw, sizeof sw, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' %s/>", x, y, x + 26,
+                 y, seg_style[k]);
         if (k <= SEG_F1) {
             snprintf(tx, sizeof tx, "%s: %s (%s, line \xe2\x89\xa5 0), %lu moves", what[k],
                      family_name(k == SEG_F1), k == SEG_F1 ? "CIRCLES" : "LINES", seg_count[k]);
         } else if (k == SEG_LINK) {
-            snprintf(tx, sizeof tx, "%s (line \xe2\x88\x92" "1 and between lines, at feed), %lu moves",
+            snprintf(tx, sizeof tx,
+                     "%s (line \xe2\x88\x92"
+                     "1 and between lines, at feed), %lu moves",
                      what[k], seg_count[k]);
         } else {
             snprintf(tx, sizeof tx, "%s between runs (not streamed: the machine's own travel), %lu",
@@ -666,18 +696,23 @@ static void svg_legend(FILE *f, int surface)
     }
     x = 560.0;
     y = 556.0;
-    snprintf(sw, sizeof sw, "<circle cx='%.1f' cy='%.1f' r='5' fill='#ffd400' stroke='#000' "
-                            "stroke-width='1.2'/><rect x='%.1f' y='%.1f' width='7' height='7' "
-                            "fill='white' stroke='#000' stroke-width='1.2'/>", x + 6, y, x + 17, y - 3.5);
+    snprintf(sw, sizeof sw,
+             "<circle cx='%.1f' cy='%.1f' r='5' fill='#ffd400' stroke='#000' "
+             "stroke-width='1.2'/><rect x='%.1f' y='%.1f' width='7' height='7' "
+             "fill='white' stroke='#000' stroke-width='1.2'/>",
+             x + 6, y, x + 17, y - 3.5);
     legend_row(f, x, y, sw, "start (first point streamed), end (last point)");
-    snprintf(sw, sizeof sw, "<rect x='%.1f' y='%.1f' width='26' height='8' fill='none' stroke='#555' "
-                            "stroke-width='0.7' stroke-dasharray='2,3'/>", x, y + 14);
+    snprintf(sw, sizeof sw,
+             "<rect x='%.1f' y='%.1f' width='26' height='8' fill='none' stroke='#555' "
+             "stroke-width='0.7' stroke-dasharray='2,3'/>",
+             x, y + 14);
     legend_row(f, x, y + 18, sw, "part extent: the points' bounding box, mm");
-    snprintf(sw, sizeof sw, "<circle cx='%.1f' cy='%.1f' r='4' fill='none' stroke='#000'/>", x + 13, y + 36);
+    snprintf(sw, sizeof sw, "<circle cx='%.1f' cy='%.1f' r='4' fill='none' stroke='#000'/>", x + 13,
+             y + 36);
     legend_row(f, x, y + 36, sw, "origin (0, 0, 0) of the job's coordinates");
     if (surface) {
-        snprintf(sw, sizeof sw, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#999'/>", x, y + 54,
-                 x + 26, y + 54);
+        snprintf(sw, sizeof sw, "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#999'/>", x,
+                 y + 54, x + 26, y + 54);
         legend_row(f, x, y + 54, sw, "canal surface (judge's model): circles, C darker");
     }
 }
@@ -695,13 +730,16 @@ static void svg_write(const char *path)
         perror(path);
         return;
     }
-    fprintf(f, "<?xml version='1.0' encoding='UTF-8'?>\n<svg xmlns='http://www.w3.org/2000/svg' "
-               "version='1.1' width='%d' height='%d' viewBox='0 0 %d %d'>\n<title>host_sim toolpath"
-               "</title>\n<rect width='%d' height='%d' fill='white'/>\n", SVG_W, SVG_H, SVG_W, SVG_H,
-            SVG_W, SVG_H);
+    fprintf(f,
+            "<?xml version='1.0' encoding='UTF-8'?>\n<svg xmlns='http://www.w3.org/2000/svg' "
+            "version='1.1' width='%d' height='%d' viewBox='0 0 %d %d'>\n<title>host_sim toolpath"
+            "</title>\n<rect width='%d' height='%d' fill='white'/>\n",
+            SVG_W, SVG_H, SVG_W, SVG_H, SVG_W, SVG_H);
     if (npts < 2u || nruns == 0u) {
-        fprintf(f, "<text x='20' y='40' %s font-size='16'>%lu points received: no toolpath to draw"
-                   "</text>\n</svg>\n", SVG_FONT, npts);
+        fprintf(f,
+                "<text x='20' y='40' %s font-size='16'>%lu points received%s: no toolpath drawn"
+                "</text>\n</svg>\n",
+                SVG_FONT, npts, nruns == 0u && npts > 0u ? " without a run header" : "");
         fclose(f);
         return;
     }
@@ -718,8 +756,8 @@ static void svg_write(const char *path)
     memset(seg_count, 0, sizeof seg_count);
     for (view = 0; view < 2; view++) {
         view_fit(&w, view, &b, near);
-        fprintf(f, "<text x='%.1f' y='84' %s font-size='13' fill='#333'>%s</text>\n", SVG_PX0[view] - 50,
-                SVG_FONT, title[view]);
+        fprintf(f, "<text x='%.1f' y='84' %s font-size='13' fill='#333'>%s</text>\n",
+                SVG_PX0[view] - 50, SVG_FONT, title[view]);
         svg_surface(f, &w);
         if (!view) {
             svg_axes_top(f, &w);
@@ -731,9 +769,11 @@ static void svg_write(const char *path)
         svg_marks(f, &w);
     }
     svg_legend(f, ngrid > 0u);
-    fprintf(f, "<text x='20' y='%d' %s font-size='10' fill='#555'>the points as the firmware streamed "
-               "them and host_sim received them intact (a TOOL BALL job: the tool tip, or its centre "
-               "with CENTRE; no TOOL: surface points); Z up, mm</text>\n</svg>\n", SVG_H - 12, SVG_FONT);
+    fprintf(f,
+            "<text x='20' y='%d' %s font-size='10' fill='#555'>the points as the firmware streamed "
+            "them and host_sim received them intact (a TOOL BALL job: the tool tip, or its centre "
+            "with CENTRE; no TOOL: surface points); Z up, mm</text>\n</svg>\n",
+            SVG_H - 12, SVG_FONT);
     fclose(f);
 }
 unsigned long sim_out_close(void)

@@ -15,9 +15,9 @@
 #include <stdint.h>
 
 struct sim_out_pt {
-    int32_t x, y, z;  /* 0.1 um */
-    int16_t n[3];     /* 1/32767 (valid if has_n) */
-    int32_t line;     /* -1: link move */
+    int32_t x, y, z; /* 0.1 um */
+    int16_t n[3];    /* 1/32767 (valid if has_n) */
+    int32_t line;    /* -1: link move */
     uint32_t index;
     int has_n;
 };
@@ -38,8 +38,8 @@ void sim_out_gcode(const char *body);
  * is reached by a rapid move in the SVG. Up to SIM_OUT_RUNS_MAX runs are drawn apart;
  * later ones join the last. */
 #define SIM_OUT_RUNS_MAX 64
-void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int mode,
-                       unsigned n, unsigned steps, unsigned link);
+void sim_out_run_begin(const char *surface, uint32_t points, uint32_t first, int mode, unsigned n,
+                       unsigned steps, unsigned link);
 
 /* A job command the firmware answered ok: TOL, STEPS and TOOL are kept for the SVG's
  * caption (the last of TOL / STEPS wins, as in the firmware); other lines are ignored. */
