@@ -363,6 +363,16 @@ static const struct bad_vec bad[] = {
     {"RXBUF 95", CP_ST_OUT_OF_RANGE}, /* smaller than the longest stream line */
     {"FEED 0.04", CP_ST_OUT_OF_RANGE}, /* would print F0.0 */
     {"CHECKSUM MAYBE", CP_ST_BAD_KEYWORD},
+    {"PLACE 1 2", CP_ST_BAD_ARITY},
+    {"PLACE 1 2 3 4 5", CP_ST_BAD_ARITY},
+    {"TILT 45", CP_ST_BAD_ARITY},
+    {"PLACE 1 2 z", CP_ST_BAD_NUMBER},
+    {"PLACE 0 nan 0", CP_ST_NONFINITE},
+    {"TILT 0 inf", CP_ST_NONFINITE},
+    {"PLACE 1001 0 0", CP_ST_OUT_OF_RANGE},
+    {"PLACE 0 0 0 361", CP_ST_OUT_OF_RANGE},
+    {"TILT 361 0", CP_ST_OUT_OF_RANGE},
+    {"TILT 45 91", CP_ST_OUT_OF_RANGE},
     {"RESUME", CP_ST_BAD_ARITY},
     {"RESUME x", CP_ST_BAD_NUMBER},
     {"RUN", CP_ST_NO_JOB},
