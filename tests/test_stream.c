@@ -261,6 +261,27 @@ int test_stream_gcode(void)
     return 0;
 }
 
+/* A placement that is the identity (a full turn, a tilt axis without a tilt) streams
+ * exactly the unplaced points (machine_gcode compares every G1 with the model's own
+ * iterator): the transform is skipped, not merely close. */
+int test_stream_place_identity(void)
+{
+    uint32_t pts = 0;
+    int r;
+    rig_init();
+    CHECK(load(paper_job));
+    CHECK(expect_code("PLACE 0 0 0 360", 0));
+    CHECK(expect_code("TILT 45 0", 0));
+    host_send("RUN\n");
+    r = machine_gcode(128, 3, 0, &pts, 0);
+    if (r != 0) {
+        return r;
+    }
+    CHECK_EQ_INT(pts, path_count(&rig.p.path));
+    CHECK(rig.p.run.place.on == 0u);
+    return 0;
+}
+
 int test_stream_checksum(void)
 {
     uint32_t pts = 0;
