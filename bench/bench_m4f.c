@@ -576,6 +576,35 @@ static void call_gsr_arclen_init(void)
     bench_sink = gsr_arclen_init(&gsr_arc, CP_R(1.7), CP_R(0.95));
 }
 
+/* placement on the part (proto/place.h): the per-point transform of p and n, and the
+ * once-per-RUN matrix (PLACE 120 -45 30 35, TILT 45 30) */
+static struct place bench_pl;
+static struct raster_pt bench_ppt;
+static const struct job_place bench_jp = {{CP_R(120.0), CP_R(-45.0), CP_R(30.0)}, CP_R(35.0),
+                                          CP_R(45.0), CP_R(30.0)};
+
+static void setup_place(void)
+{
+    place_init(&bench_pl, &bench_jp);
+    memset(&bench_ppt, 0, sizeof bench_ppt);
+    bench_ppt.p.x = CP_R(12.5);
+    bench_ppt.p.y = CP_R(-3.25);
+    bench_ppt.p.z = CP_R(4.0);
+    bench_ppt.n.z = CP_R(1.0);
+}
+
+static void call_place_apply(void)
+{
+    place_apply(&bench_pl, &bench_ppt);
+    bench_sink = (int32_t)(bench_ppt.p.x + bench_ppt.n.y);
+}
+
+static void call_place_init(void)
+{
+    place_init(&bench_pl, &bench_jp);
+    bench_sink = (int32_t)bench_pl.on;
+}
+
 static const struct bench_case cases[] = {
     {"empty", setup_none, call_empty}, /* must stay first: the baseline */
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
@@ -606,6 +635,8 @@ static const struct bench_case cases[] = {
     {"gsr_init_g1_tol2um", setup_gsr_line_g1, call_gsr_init},
     {"gsr_arclen_angle", setup_gsr_arclen, call_gsr_arclen_angle},
     {"gsr_arclen_init", setup_none, call_gsr_arclen_init},
+    {"place_apply_point", setup_place, call_place_apply},
+    {"place_init_run", setup_place, call_place_init},
 };
 
 #define N_CASES (sizeof cases / sizeof cases[0])

@@ -69,7 +69,7 @@ run-native|run-qemu)
         echo "sim-run-qemu: $QEMU not found (apt-get install qemu-system-arm)"
         echo "$suite: 0 passed, 1 failed"; exit 1
     fi
-    for job in paper_gcode paper_frames paper_gcode_cs boss_gcode boss_frames; do
+    for job in paper_gcode paper_frames paper_gcode_cs boss_gcode boss_frames placed_gcode placed_frames; do
         hs "$job" "$tgt" --job "$J/$job.job" --csv "$OUT/$job.csv" --gcode "$OUT/$job.nc" \
             --svg "$OUT/$job.svg"
         result "$job" $? "$(figs "$job")"
@@ -153,6 +153,14 @@ models)
         m=${job#model_}; m=${m%%_*}
         if [ $r0 -eq 1 ] && grep -q "FAIL judge $m-" "$OUT/${job}_wrong.out"; then r0=0; else r0=1; fi
         result "${job}_judge_fails" $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge $m-[a-z]*" "$OUT/${job}_wrong.out" | tr '\n' ' '))"
+        if grep -qi '^ *PLACE' "$f"; then
+            # a placed job: the judge's inverse turned 0.01 deg more (a firmware with a
+            # wrong rz) must fail the model's judge
+            SIM_PLACE_SKEW_DEG=0.01 hs "${job}_skewed" native --job "$f"
+            r0=$?
+            if [ $r0 -eq 1 ] && grep -q "FAIL judge $m-" "$OUT/${job}_skewed.out"; then r0=0; else r0=1; fi
+            result "${job}_place_judge_fails" $r0 "(inverse placement 0.01 deg off: $(grep -o "FAIL judge $m-[a-z]*" "$OUT/${job}_skewed.out" | tr '\n' ' '))"
+        fi
         if command -v "$QEMU" >/dev/null 2>&1; then
             # the all-features image, all four models (mk/m4f.mk: fw.elf = fw-all.elf)
             ELF=$B/m4f/fw.elf
@@ -170,6 +178,14 @@ models)
     r0=$?
     if [ $r0 -eq 1 ] && grep -q "FAIL judge line" "$OUT/canal_paper_frames_wrong.out"; then r0=0; else r0=1; fi
     result canal_paper_frames_judge_fails $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge [a-z]*" "$OUT/canal_paper_frames_wrong.out" | tr '\n' ' '))"
+    # a placed canal job: the judge's inverse turned 0.01 deg more (a firmware with a wrong
+    # rz) fails the canal's judge
+    for job in placed_frames placed_gcode; do
+        SIM_PLACE_SKEW_DEG=0.01 hs "canal_${job}_skewed" native --job "$J/$job.job"
+        r0=$?
+        if [ $r0 -eq 1 ] && grep -q "FAIL judge line" "$OUT/canal_${job}_skewed.out"; then r0=0; else r0=1; fi
+        result "canal_${job}_place_judge_fails" $r0 "(inverse placement 0.01 deg off: $(grep -o "FAIL judge [a-z]*" "$OUT/canal_${job}_skewed.out" | tr '\n' ' '))"
+    done
     ;;
 example)
     # the example model (docs/ARCHITECTURE.md): a firmware built with CP_WITH_PLANE=1

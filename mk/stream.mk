@@ -18,11 +18,12 @@ demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	        | grep -v '^  PASS' || exit 1; done
 	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge)"
 
-## sim-rs274: LinuxCNC's rs274 runs the streamed G-code (paper; boss with a ball tool) with 0
-##            errors and every STRAIGHT_FEED equals the received point to 0.1 um (word "rs274")
+## sim-rs274: LinuxCNC's rs274 runs the streamed G-code (paper; boss with a ball tool; the paper
+##            placed on an inclined face) with 0 errors and every STRAIGHT_FEED equals the
+##            received point to 0.1 um (word "rs274")
 sim-rs274: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/rs274
-	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode; do \
+	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode placed_gcode; do \
 	    if $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/rs274/$$j.csv --gcode $(BUILD)/rs274/$$j.ngc > $(BUILD)/rs274/$$j.log 2>&1; then \
 	        out=$$(sh tools/rs274_check.sh $(BUILD)/rs274/$$j.ngc $(BUILD)/rs274/$$j.csv); echo "$$out" | sed '$$d'; \

@@ -261,6 +261,27 @@ int test_stream_gcode(void)
     return 0;
 }
 
+/* A placement that is the identity (a full turn, a tilt axis without a tilt) streams
+ * exactly the unplaced points (machine_gcode compares every G1 with the model's own
+ * iterator): the transform is skipped, not merely close. */
+int test_stream_place_identity(void)
+{
+    uint32_t pts = 0;
+    int r;
+    rig_init();
+    CHECK(load(paper_job));
+    CHECK(expect_code("PLACE 0 0 0 360", 0));
+    CHECK(expect_code("TILT 45 0", 0));
+    host_send("RUN\n");
+    r = machine_gcode(128, 3, 0, &pts, 0);
+    if (r != 0) {
+        return r;
+    }
+    CHECK_EQ_INT(pts, path_count(&rig.p.path));
+    CHECK(rig.p.run.place.on == 0u);
+    return 0;
+}
+
 int test_stream_checksum(void)
 {
     uint32_t pts = 0;
@@ -363,6 +384,16 @@ static const struct bad_vec bad[] = {
     {"RXBUF 95", CP_ST_OUT_OF_RANGE}, /* smaller than the longest stream line */
     {"FEED 0.04", CP_ST_OUT_OF_RANGE}, /* would print F0.0 */
     {"CHECKSUM MAYBE", CP_ST_BAD_KEYWORD},
+    {"PLACE 1 2", CP_ST_BAD_ARITY},
+    {"PLACE 1 2 3 4 5", CP_ST_BAD_ARITY},
+    {"TILT 45", CP_ST_BAD_ARITY},
+    {"PLACE 1 2 z", CP_ST_BAD_NUMBER},
+    {"PLACE 0 nan 0", CP_ST_NONFINITE},
+    {"TILT 0 inf", CP_ST_NONFINITE},
+    {"PLACE 1001 0 0", CP_ST_OUT_OF_RANGE},
+    {"PLACE 0 0 0 361", CP_ST_OUT_OF_RANGE},
+    {"TILT 361 0", CP_ST_OUT_OF_RANGE},
+    {"TILT 45 91", CP_ST_OUT_OF_RANGE},
     {"RESUME", CP_ST_BAD_ARITY},
     {"RESUME x", CP_ST_BAD_NUMBER},
     {"RUN", CP_ST_NO_JOB},

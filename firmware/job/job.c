@@ -406,6 +406,36 @@ static int job_surface(struct job *j, const struct job_args *a)
     return CP_ST_OK;
 }
 
+/* PLACE x y z [rz] | TILT axis_deg angle_deg: every number finite and in range (error:6),
+ * else the job unchanged */
+static int job_place_cmd(struct job *j, const struct job_args *a)
+{
+    struct job_place *pl = &j->place;
+    const cp_real *v = a->v;
+    unsigned i;
+    if (a->cmd == JOB_CMD_TILT) {
+        if (!(cp_fabs(v[0]) <= JOB_TILT_AXIS_MAX) || !(cp_fabs(v[1]) <= JOB_TILT_MAX)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+        pl->axis = v[0];
+        pl->tilt = v[1];
+        return CP_ST_OK;
+    }
+    for (i = 0; i < 3u; i++) {
+        if (!(cp_fabs(v[i]) <= JOB_PLACE_OFF_MAX)) {
+            return CP_ST_OUT_OF_RANGE;
+        }
+    }
+    if (a->na == 4u && !(cp_fabs(v[3]) <= JOB_PLACE_RZ_MAX)) {
+        return CP_ST_OUT_OF_RANGE;
+    }
+    for (i = 0; i < 3u; i++) {
+        pl->off[i] = v[i];
+    }
+    pl->rz = a->na == 4u ? v[3] : CP_R(0.0);
+    return CP_ST_OK;
+}
+
 /* The commands of owner JOB, their arguments checked (job_args_of). */
 static int job_own_command(struct job *j, const struct job_args *a)
 {
@@ -454,6 +484,9 @@ static int job_own_command(struct job *j, const struct job_args *a)
         return CP_ST_OK;
     case JOB_CMD_SURFACE:
         return job_surface(j, a);
+    case JOB_CMD_PLACE:
+    case JOB_CMD_TILT:
+        return job_place_cmd(j, a);
     default: /* not JOB's (unreachable: job_line calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }

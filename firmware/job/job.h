@@ -17,6 +17,10 @@
  *   RXBUF n                  the machine's RX buffer for character counting
  *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 96..1024, default 128)
  *   CHECKSUM ON | OFF        Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
+ *   PLACE x y z [rz]         the part's origin on the table (mm, |.| <= 1000) and its turn
+ *                            about Z (degrees, |rz| <= 360, default 0); error:6 out of range
+ *   TILT axis_deg angle_deg  the base plane inclined by angle_deg (|.| <= 90) about the
+ *                            table line at axis_deg (|.| <= 360) through the part's origin
  *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL; the words
  *                            of models.def); a new SURFACE starts that model's geometry
  *                            afresh (path.h)
@@ -53,6 +57,24 @@ enum job_format {
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
 #define JOB_FEED_MIN CP_R(0.05) /* smallest non-zero FEED: F is printed with 1 decimal */
+#define JOB_PLACE_OFF_MAX CP_R(1000.0) /* PLACE: |x|, |y|, |z| <= 1 m (mm) */
+#define JOB_PLACE_RZ_MAX CP_R(360.0)   /* PLACE: |rz| <= 360 deg */
+#define JOB_TILT_AXIS_MAX CP_R(360.0)  /* TILT: |axis_deg| <= 360 */
+#define JOB_TILT_MAX CP_R(90.0)        /* TILT: |angle_deg| <= 90 (a vertical face at most) */
+
+/* PLACE and TILT as given (docs/PROTOCOL.md "Placement on the part"); all 0 (job_init):
+ * no placement. The model's point p (tool offset included) and normal n go to the table
+ * as  p' = T Rz p + off,  n' = T Rz n,  where Rz turns by rz about Z (counter-clockwise
+ * seen from +Z) and T inclines the base plane by `tilt` about the table line through
+ * the part's origin at direction `axis` in XY (right hand about (cos axis, sin axis, 0)):
+ * "the face is inclined 30 deg about the line at 45 deg" is TILT 45 30. proto's place.h
+ * builds the matrix at RUN. */
+struct job_place {
+    cp_real off[3]; /* PLACE x y z: mm, |.| <= JOB_PLACE_OFF_MAX */
+    cp_real rz;     /* PLACE rz: degrees, |rz| <= JOB_PLACE_RZ_MAX (default 0) */
+    cp_real axis;   /* TILT axis_deg: degrees, |axis| <= JOB_TILT_AXIS_MAX */
+    cp_real tilt;   /* TILT angle_deg: degrees, |tilt| <= JOB_TILT_MAX */
+};
 
 /* Returned by job_command for a line that is not a job command (e.g. RUN, $I). */
 #define JOB_NOT_MINE (-1)
@@ -65,6 +87,7 @@ struct job {
                                is also the radius law of SURFACE DRC's EDGE fillet), C units */
     union path_geom geom;   /* geometry of the model of `kind` (job_geom_fill: the canal's
                                and DRC's radius law from `canal`, before path_init) */
+    struct job_place place;  /* PLACE, TILT (all 0: none) */
     cp_real feed;            /* mm/min, 0 = omit F */
     uint16_t rxbuf;          /* machine RX buffer, bytes */
     uint16_t have;           /* JOB_HAVE_* bits */
@@ -174,7 +197,8 @@ struct job_args {
 #include "models.def"
 #undef CP_MODEL
 
-/* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE. */
+/* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE,
+ * no placement (PLACE 0 0 0 0, TILT 0 0). */
 void job_init(struct job *j);
 
 /* Apply one command line (trimmed, no terminator). Returns a wire status

@@ -3,12 +3,17 @@
  */
 #include "out.h"
 
-int out_point(struct path *path, uint32_t k, struct raster_pt *pt)
+int out_point(struct path *path, const struct place *pl, uint32_t k, struct raster_pt *pt)
 {
+    int e;
     if (path_pos(path) != k && path_seek(path, k) != CP_OK) {
         return CP_ERR_RANGE;
     }
-    return path_next(path, pt);
+    e = path_next(path, pt);
+    if (e == CP_OK && pl->on) {
+        place_apply(pl, pt);
+    }
+    return e;
 }
 
 /* Out of line: one rounding, the same code for every coordinate of every format. */

@@ -28,6 +28,7 @@
 #include "cp_status.h"
 #include "cp_types.h"
 #include "path.h"
+#include "place.h"
 
 /* The result of an output module's step while the run goes on; any other result is
  * the CP_ST_* status the engine ends the run with (CP_ST_OK: the stream is complete). */
@@ -43,11 +44,14 @@ struct out_run {
     uint32_t end;     /* stream items of the run */
     uint32_t t_last;  /* ms of the last progress from the peer (ACK, machine answer) */
     uint8_t lead;     /* stream items before the first point: 1 or 2 (G-code), 1 (frames) */
+    struct place place; /* PLACE/TILT of the run (place_init at RUN; all 0: none) */
 };
 
-/* Position the iterator on point k (seek only if it is elsewhere) and fetch it.
- * Returns CP_OK, CP_ERR_RANGE when k is not a point of the path, or path_next's error. */
-int out_point(struct path *path, uint32_t k, struct raster_pt *pt);
+/* Position the iterator on point k (seek only if it is elsewhere), fetch it and place it
+ * on the part (pl->on: place_apply to p and n; the one place every model's point of every
+ * format goes through). Returns CP_OK, CP_ERR_RANGE when k is not a point of the path,
+ * or path_next's error. */
+int out_point(struct path *path, const struct place *pl, uint32_t k, struct raster_pt *pt);
 
 /* v counted in units of 1/scale, rounded half up: floor(v * scale + 0.5), exact and the
  * same on every target (G-code and frame positions: scale 1e4, 0.1 um; frame normals:

@@ -33,7 +33,7 @@ static int encode_point(const struct out_run *run, struct path *path, uint32_t i
     uint8_t pl[FRAME_POINT_PAYLOAD];
     struct raster_pt pt;
     uint32_t k = run->start_k + idx - 1u;
-    int e = out_point(path, k, &pt);
+    int e = out_point(path, &run->place, k, &pt);
     if (e != CP_OK) {
         return e;
     }

@@ -47,7 +47,7 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
         (void)fmt_str(out, cap, &pos, "G21 G90 G17");
     } else {
         struct raster_pt pt;
-        int e = out_point(path, run->start_k + (idx - run->lead), &pt);
+        int e = out_point(path, &run->place, run->start_k + (idx - run->lead), &pt);
         if (e != CP_OK) {
             return e;
         }

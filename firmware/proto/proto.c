@@ -197,6 +197,7 @@ static int run_start(struct proto *p, uint32_t first)
     p->run.next = 0;
     p->run.acked = 0;
     p->run.t_last = hal_uart_now_ms(p->uart);
+    place_init(&p->run.place, &p->job.place); /* the matrix once per RUN */
     p->state = PROTO_RUN;
     switch ((enum job_format)p->fmt) {
     case JOB_GCODE:
