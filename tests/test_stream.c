@@ -337,6 +337,16 @@ static const struct bad_vec bad[] = {
     {"CURVE ARC 0 0 3 0 nan", CP_ST_NONFINITE},
     {"CURVE ARC 0 0 inf 0 90", CP_ST_NONFINITE},
     {"CURVE LINE 0 0 1e12 0", CP_ST_OUT_OF_RANGE},
+    /* the curve alone, at CURVE (canal_curve_check: the codes of RUN) */
+    {"CURVE ELLIPSE 0 0 0 25 0 360", CP_ST_OUT_OF_RANGE},
+    {"CURVE ARC 0 0 3 0 400", CP_ST_OUT_OF_RANGE},
+    {"CURVE LINE 0 0 2e4 0", CP_ST_OUT_OF_RANGE},
+    {"CURVE LINE 0 0 0 0", CP_ST_DEGENERATE},
+    {"CURVE BEZIER 1 1 1 1 1 1 1 1", CP_ST_DEGENERATE},
+    {"CURVE ARC 0 0 3 10 10", CP_ST_EMPTY},
+    /* the law alone, at RADIUS (canal_radius_check) */
+    {"RADIUS COS 1 2 65", CP_ST_OUT_OF_RANGE},
+    {"RADIUS LINEAR 1 2e4", CP_ST_OUT_OF_RANGE},
     {"RADIUS", CP_ST_BAD_ARITY},
     {"RADIUS CONST", CP_ST_BAD_ARITY},
     {"RADIUS WAVY 1", CP_ST_BAD_KEYWORD},
@@ -375,9 +385,7 @@ static const struct {
     const char *cmds[5];
     int code;
 } bad_jobs[] = {
-    {{"CURVE LINE 0 0 0 0", "RADIUS CONST 2", "LINES 1 0 0", NULL, NULL}, CP_ST_DEGENERATE},
     {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5 2 2", "LINES 1 0 0", NULL, NULL}, CP_ST_RADIUS},
-    {{"CURVE ARC 0 0 3 10 10", "RADIUS CONST 2", "LINES 1 0 0", NULL, NULL}, CP_ST_EMPTY},
     {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 5 -20 60", NULL, NULL}, CP_ST_CUSP},
     {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 2 -20 5", "TOOL BALL 6", NULL},
      CP_ST_TOOL},

@@ -21,8 +21,10 @@
  *                            of models.def); a new SURFACE starts that model's geometry
  *                            afresh (path.h)
  * Every command is a row of commands.def (its keyword, argument shape, words and
- * owner). Every command validates its arguments at once; the geometry is validated at
- * RUN (path_init), each failure with its own wire status (cp_status.def).
+ * owner). Every command validates its arguments at once, with every check of the model's
+ * init that needs the command alone (CURVE: canal_curve_check, RADIUS: canal_radius_check,
+ * ...: the same code as at RUN); what needs the combination is validated at RUN
+ * (path_init), each failure with its own wire status (cp_status.def).
  * A model's own geometry commands (job_<m>.c) need its SURFACE first (error:24).
  */
 #ifndef JOB_H
