@@ -392,6 +392,20 @@ static const struct {
     {{"CURVE ARC 0 0 3 0 360", "RADIUS CONST 2", "CIRCLES 2 0 90", "TOL 0.01", NULL}, CP_ST_TOL},
 };
 
+/* A model's command refused on its own, under its SURFACE. */
+static const struct {
+    const char *surface, *line;
+    int code;
+} bad_model[] = {
+    {"SURFACE DRC", "POINT 1 2 3", CP_ST_OFF_PLANE},     /* drc_point_check */
+    {"SURFACE DRC", "POINT 1 2e4", CP_ST_OUT_OF_RANGE},
+    {"SURFACE GSR", "RADII N 1 -2 0 0 0 0 0", CP_ST_SECTION}, /* gsr_fn_check */
+    {"SURFACE GSR", "RADII B 0 0 0 0 0 0 0", CP_ST_SECTION},
+    {"SURFACE GSR", "RADII T 0 2 0 0 0 0 0", CP_ST_FT_RANGE},
+    {"SURFACE GSR", "RADII T 1 -1 0 0 0 0 0", CP_ST_FT_RANGE},
+    {"SURFACE GSR", "RADII T 0.5 0 0 0 0 0 0", CP_ST_FT_RANGE},
+};
+
 int test_stream_bad_input(void)
 {
     size_t i;
@@ -410,6 +424,15 @@ int test_stream_bad_input(void)
         }
         if (!expect_code("RUN", bad_jobs[i].code)) {
             printf("  bad-job row %u\n", (unsigned)i);
+            return __LINE__;
+        }
+    }
+    /* the models' own commands check what needs the command alone, as their RUN would */
+    for (i = 0; i < sizeof bad_model / sizeof bad_model[0]; i++) {
+        rig_init();
+        CHECK(expect_code(bad_model[i].surface, 0));
+        if (!expect_code(bad_model[i].line, bad_model[i].code)) {
+            printf("  bad-model row %u\n", (unsigned)i);
             return __LINE__;
         }
     }

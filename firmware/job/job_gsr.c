@@ -12,7 +12,9 @@
  *   FORM RATIONAL|TRIG               section points (default RATIONAL)
  * Arity error:3, numbers error:4/5, keyword error:9 (job.c checks these: the keywords,
  * words and number counts are rows of commands.def), range error:6 (|a_i|, |b|, |c|, |x|, ref
- * <= 1e4 mm, |w| <= 23040 deg, ref != 0). The geometry itself is checked by RUN.
+ * <= 1e4 mm, |w| <= 23040 deg, ref != 0); RADII checks its function alone as gsr_init does
+ * (gsr_fn_check at u = k/256: error:28 f_N or f_B <= 0, error:29 f_t outside [0, 1],
+ * decreasing or f_t(1) <= f_t(0)). The rest of the geometry is checked by RUN.
  */
 #include "job.h"
 
@@ -90,6 +92,7 @@ int job_gsr_command(struct job *j, struct job_args *a)
     struct gsr_cfg *c = &j->geom.gsr;
     cp_real *v = a->v;
     unsigned k = a->value, na = a->na, i;
+    int err;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
             return CP_ST_OUT_OF_RANGE;
@@ -103,6 +106,10 @@ int job_gsr_command(struct job *j, struct job_args *a)
         gsr_center(c, a->word, k, v, na);
         return CP_ST_OK;
     case GSR_CMD_RADII: /* k: f_N, f_B, f_t (which has a default) */
+        err = gsr_fn_check(v, k); /* gsr_init's checks of the function alone */
+        if (err != CP_OK) {
+            return cp_status_of(err);
+        }
         for (i = 0; i < GSR_FN; i++) {
             c->r[k][i] = v[i];
         }
