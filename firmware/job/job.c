@@ -454,6 +454,9 @@ static int job_own_command(struct job *j, const struct job_args *a)
         return CP_ST_OK;
     case JOB_CMD_SURFACE:
         return job_surface(j, a);
+    case JOB_CMD_CLEAR: /* JOB CLEAR: the defaults */
+        job_init(j);
+        return CP_ST_OK;
     default: /* not JOB's (unreachable: job_line calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }
@@ -470,6 +473,139 @@ static int owner_command(struct job *j, unsigned owner, struct job_args *a)
     default: /* JOB_OWNER_JOB */
         return job_own_command(j, a);
     }
+}
+
+/* ---- the job as command lines ($J) ---- */
+
+const char *job_keyword(enum job_cmd c)
+{
+    return (unsigned)c < (unsigned)JOB_CMDS ? cmds[c].keyword : "";
+}
+
+const char *job_word_text(enum job_word w)
+{
+    return (unsigned)w < (unsigned)JOB_WORDS ? words[w].text : "";
+}
+
+unsigned job_shape_of(enum job_cmd c)
+{
+    return (unsigned)c < (unsigned)JOB_CMDS ? cmds[c].shape : JOB_ARGS_ALONE;
+}
+
+enum job_word job_word_of(enum job_cmd c, unsigned value, unsigned option)
+{
+    unsigned w;
+    for (w = 0; w < (unsigned)JOB_WORDS; w++) {
+        if (words[w].cmd == c && words[w].option == option && words[w].value == value) {
+            return (enum job_word)w;
+        }
+    }
+    return JOB_NO_WORD;
+}
+
+void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
+{
+    unsigned i;
+    a->cmd = c;
+    a->word = w;
+    a->value = 0u;
+    a->option = JOB_NO_WORD;
+    a->option_value = 0u;
+    a->na = (unsigned)w < (unsigned)JOB_WORDS ? words[w].numbers : 0u;
+    a->u = 0u;
+    for (i = 0; i < JOB_MAX_NUMBERS; i++) {
+        a->v[i] = CP_R(0.0);
+        a->scale[i] = JOB_SCALE_ONE;
+    }
+}
+
+/* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them): TOOL, LINES or
+ * CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE; SKIP at the default. */
+#define JOB_DUMP_ITEMS_OWN 8u
+static int dump_own(const struct job *j, unsigned i, struct job_args *a)
+{
+    const struct raster_cfg *c = &j->cfg;
+    static const uint8_t cmd_of[JOB_DUMP_ITEMS_OWN] = {
+        JOB_CMD_TOOL,   JOB_CMD_LINES, JOB_CMD_STEPS,    JOB_CMD_FEED,
+        JOB_CMD_FORMAT, JOB_CMD_RXBUF, JOB_CMD_CHECKSUM, JOB_CMD_SURFACE};
+    static const uint8_t skip_value[JOB_DUMP_ITEMS_OWN] = {
+        [4] = JOB_GCODE, [6] = 0u, [7] = PATH_CANAL}; /* FORMAT, CHECKSUM, SURFACE defaults */
+    unsigned value = i == 4u ? j->format : i == 6u ? j->checksum : j->kind;
+    job_dump_args(a, (enum job_cmd)cmd_of[i], JOB_NO_WORD);
+    switch (i) {
+    case 0: /* TOOL BALL r [CENTRE] (TIP is BALL's own); NONE is the default */
+        if (c->output == RASTER_OUT_SURFACE) {
+            return JOB_DUMP_SKIP;
+        }
+        job_dump_args(a, JOB_CMD_TOOL, JOB_WORD_TOOL_BALL);
+        a->v[0] = c->tool_r;
+        a->option = c->output == RASTER_OUT_CENTRE ? JOB_WORD_TOOL_CENTRE : JOB_NO_WORD;
+        return JOB_DUMP_LINE;
+    case 1: /* LINES | CIRCLES n u0 u1 [PATCH] */
+        if ((j->have & JOB_HAVE_RASTER) == 0u) {
+            return JOB_DUMP_SKIP;
+        }
+        a->cmd = c->mode == RASTER_CIRCLES ? JOB_CMD_CIRCLES : JOB_CMD_LINES;
+        a->option = c->mode == RASTER_CIRCLES && c->span == RASTER_SPAN_LINES
+                        ? JOB_WORD_CIRCLES_PATCH
+                        : JOB_NO_WORD;
+        a->u = c->n;
+        a->na = 2u;
+        a->v[0] = c->u0;
+        a->v[1] = c->u1;
+        a->scale[0] = a->scale[1] = JOB_SCALE_DEG;
+        return JOB_DUMP_LINE;
+    case 2: /* STEPS m | TOL chord_um (TOL 1 is the default) */
+        if (c->steps != 0u) {
+            a->u = c->steps;
+            return JOB_DUMP_LINE;
+        }
+        a->cmd = JOB_CMD_TOL;
+        a->na = 1u;
+        a->v[0] = c->tol;
+        a->scale[0] = JOB_SCALE_MILLI;
+        return c->tol == CP_R(0.001) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case 3: /* FEED f */
+        a->na = 1u;
+        a->v[0] = j->feed;
+        return j->feed == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case 5: /* RXBUF n */
+        a->u = j->rxbuf;
+        return j->rxbuf == 128u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    default: /* FORMAT, CHECKSUM, SURFACE: a word of the value */
+        a->word = job_word_of(a->cmd, value, 0u);
+        return value == skip_value[i] ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    }
+}
+
+/* The model of the job's items. */
+static int dump_model(const struct job *j, unsigned i, struct job_args *a)
+{
+    switch (j->kind) {
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    PATH_IF(WITH, case PATH_##NAME : return job_##name##_dump(j, i, a);)
+#include "models.def"
+#undef CP_MODEL
+    default:
+        return JOB_DUMP_END;
+    }
+}
+
+int job_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    int r;
+    if (i < JOB_DUMP_ITEMS_OWN) {
+        return dump_own(j, i, a);
+    }
+    i -= JOB_DUMP_ITEMS_OWN;
+    if (i < JOB_CANAL_ITEMS) { /* CURVE, RADIUS: every SURFACE's */
+        return job_canal_dump(j, i, a);
+    }
+    if (j->kind == PATH_CANAL) {
+        return JOB_DUMP_END;
+    }
+    r = dump_model(j, i - JOB_CANAL_ITEMS, a);
+    return r;
 }
 
 /* ---- the lines ---- */
@@ -502,9 +638,12 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
         return JOB_NOT_MINE;
     }
     r = &cmds[c];
-    if (r->shape == JOB_ARGS_ALONE) { /* RUN: alone on its line (the line is trimmed) */
+    if (r->shape == JOB_ARGS_ALONE) { /* RUN, $J: alone on their line (the line is trimmed) */
         *first_k = 0u;
-        return t.n == 1u ? JOB_RUN : JOB_NOT_MINE;
+        if (t.n != 1u) {
+            return JOB_NOT_MINE;
+        }
+        return c == PROTO_CMD_DUMP ? JOB_DUMP : JOB_RUN;
     }
     if (t.n > JOB_MAX_TOKENS) {
         return CP_ST_BAD_ARITY;

@@ -94,3 +94,37 @@ int job_channel_command(struct job *j, struct job_args *a)
         return CP_ST_UNKNOWN_CMD;
     }
 }
+
+/* $J: per section s (items 2 s, 2 s + 1): SECTION a b n cx cy cz 0 0 0, then AXES with the
+ * rows the job holds (SECTION's angles only make rows; AXES sets them exactly). */
+int job_channel_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    const struct channel_cfg *g = &j->geom.channel;
+    const struct channel_section *s = &g->s[i / 2u];
+    if (i >= 2u * CP_MAX_SECTIONS) {
+        return JOB_DUMP_END;
+    }
+    if (i / 2u >= g->count) {
+        return JOB_DUMP_SKIP;
+    }
+    if (i % 2u == 0u) {
+        job_dump_args(a, CHANNEL_CMD_SECTION, JOB_NO_WORD);
+        a->na = 9u;
+        a->v[0] = s->a;
+        a->v[1] = s->b;
+        a->v[2] = s->n;
+        a->v[3] = s->c.x;
+        a->v[4] = s->c.y;
+        a->v[5] = s->c.z; /* the angles 0 */
+        return JOB_DUMP_LINE;
+    }
+    job_dump_args(a, CHANNEL_CMD_AXES, JOB_NO_WORD);
+    a->na = 6u;
+    a->v[0] = s->x.x;
+    a->v[1] = s->x.y;
+    a->v[2] = s->x.z;
+    a->v[3] = s->z.x;
+    a->v[4] = s->z.y;
+    a->v[5] = s->z.z;
+    return JOB_DUMP_LINE;
+}

@@ -75,3 +75,30 @@ int job_drc_command(struct job *j, struct job_args *a)
         return CP_ST_UNKNOWN_CMD;
     }
 }
+
+/* $J: items 0..CP_MAX_DRC_POINTS - 1 the POINTs given (x y: z is 0, POINT checks it), then
+ * THICKEN K (AUTO is the default), then EDGE ON (OFF is the default). */
+int job_drc_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    const struct drc_cfg *g = &j->geom.drc;
+    if (i < CP_MAX_DRC_POINTS) {
+        job_dump_args(a, DRC_CMD_POINT, JOB_NO_WORD);
+        a->na = 2u;
+        if (i < g->n) {
+            a->v[0] = g->p[i].x;
+            a->v[1] = g->p[i].y;
+            return JOB_DUMP_LINE;
+        }
+        return JOB_DUMP_SKIP;
+    }
+    if (i == CP_MAX_DRC_POINTS) {
+        job_dump_args(a, DRC_CMD_THICKEN, JOB_NO_WORD);
+        a->u = g->passes;
+        return g->passes == DRC_PASSES_AUTO ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    }
+    if (i == CP_MAX_DRC_POINTS + 1u) {
+        job_dump_args(a, DRC_CMD_EDGE, JOB_WORD_EDGE_ON);
+        return g->edge != 0u ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
+    }
+    return JOB_DUMP_END;
+}

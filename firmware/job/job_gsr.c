@@ -138,3 +138,68 @@ int job_gsr_command(struct job *j, struct job_args *a)
         return CP_ST_UNKNOWN_CMD;
     }
 }
+
+/* One function fn (GSR_FN numbers, w in radians) as the numbers of a CENTER X|Y|Z or RADII
+ * command. */
+static void dump_fn(struct job_args *a, const cp_real *fn)
+{
+    unsigned i;
+    a->na = GSR_FN;
+    for (i = 0; i < GSR_FN; i++) {
+        a->v[i] = fn[i];
+    }
+    a->scale[GSR_W] = JOB_SCALE_DEG;
+}
+
+/* $J items: 0..3 CENTER P<i> (a Bezier centre's points given), 4..6 CENTER X|Y|Z (a
+ * complete polynomial centre), 7, 8 RADII N, B (given), 9 RADII T (not f_t(u) = u),
+ * 10 FRAME N0 ref (a reference kept under FIXED or FRENET), 11 FRAME, 12 FORM TRIG. */
+static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a)
+{
+    static const uint8_t set_of[3] = {SET_RADII_N, SET_RADII_B, 0u};
+    unsigned k;
+    int ref = c->ref.x != CP_R(0.0) || c->ref.y != CP_R(0.0) || c->ref.z != CP_R(0.0);
+    if (i < 4u) { /* CENTER P<i> x y z */
+        job_dump_args(a, GSR_CMD_CENTER, (enum job_word)(JOB_WORD_CENTER_P0 + i));
+        for (k = 0; k < 3u; k++) {
+            a->v[k] = c->c[k][i];
+        }
+        return c->centre == GSR_CENTRE_BEZIER && (c->set & (1u << i)) != 0u;
+    }
+    if (i < 7u) { /* CENTER X|Y|Z */
+        job_dump_args(a, GSR_CMD_CENTER, job_word_of(GSR_CMD_CENTER, i - 4u, 0u));
+        dump_fn(a, c->c[i - 4u]);
+        return c->centre == GSR_CENTRE_POLY && (c->set & SET_CENTER) != 0u;
+    }
+    if (i < 10u) { /* RADII N|B|T */
+        job_dump_args(a, GSR_CMD_RADII, job_word_of(GSR_CMD_RADII, i - 7u, 0u));
+        dump_fn(a, c->r[i - 7u]);
+        if (i == 9u) { /* f_t(u) = u is the default */
+            k = 0;
+            while (k < GSR_FN && c->r[2][k] == (k == 1u ? CP_R(1.0) : CP_R(0.0))) {
+                k++;
+            }
+            return k < GSR_FN;
+        }
+        return (c->set & set_of[i - 7u]) != 0u;
+    }
+    if (i < 12u) { /* FRAME [N0 ref], FRAME */
+        unsigned f = i == 10u ? GSR_FRAME_N0 : c->frame;
+        job_dump_args(a, GSR_CMD_FRAME, job_word_of(GSR_CMD_FRAME, f, 0u));
+        a->v[0] = c->ref.x;
+        a->v[1] = c->ref.y;
+        a->v[2] = c->ref.z;
+        return (c->set & SET_FRAME) != 0u &&
+               (i == 11u || (ref && c->frame != GSR_FRAME_N0 && c->frame != GSR_FRAME_RMF));
+    }
+    job_dump_args(a, GSR_CMD_FORM, job_word_of(GSR_CMD_FORM, c->section, 0u));
+    return c->section != GSR_SECTION_RATIONAL;
+}
+
+int job_gsr_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    if (i > 12u) {
+        return JOB_DUMP_END;
+    }
+    return gsr_dump_item(&j->geom.gsr, i, a) ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
+}
