@@ -24,7 +24,8 @@ int job_canal_ready(const struct job *j)
     return (j->have & JOB_HAVE_ALL) == JOB_HAVE_ALL; /* CURVE, RADIUS, LINES or CIRCLES */
 }
 
-int job_canal_command(struct job *j, struct job_args *a)
+/* (not inlined: its copy of the canal's geometry stays out of the line handler's frame) */
+CP_NOINLINE int job_canal_command(struct job *j, struct job_args *a)
 {
     struct canal_cfg t = j->canal; /* the job unchanged on error */
     unsigned i;

@@ -283,7 +283,8 @@ static int curve_setup(struct canal *c, const struct canal_cfg *cfg)
     return CP_OK;
 }
 
-int canal_curve_check(const struct canal_cfg *cfg)
+/* (not inlined: its struct canal stays out of the protocol's line handler frame) */
+CP_NOINLINE int canal_curve_check(const struct canal_cfg *cfg)
 {
     struct canal c;
     unsigned i;
