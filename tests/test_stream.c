@@ -561,6 +561,40 @@ int test_stream_job_dump(void)
     return 0;
 }
 
+/* An error reply names its cause where the firmware knows it: "error:<code> <text>" first,
+ * unchanged, then " (<keyword> <token>: <limit>)". */
+int test_stream_error_cause(void)
+{
+    static const char *const cases[][2] = {
+        {"FEED 0.04", "error:6 value out of range (FEED 0.04: 0 or 0.05..1e6)"},
+        {"RXBUF 95", "error:6 value out of range (RXBUF 95: 96..1024)"},
+        {"LINES 3 -10 200", "error:6 value out of range (LINES 200: |u| <= 180)"},
+        {"LINES 3 5 5", "error:6 value out of range (LINES 5: u0 != u1 for n > 1)"},
+        {"TOL 0", "error:6 value out of range (TOL 0: 0.01..10000)"},
+        {"TOOL BALL -1", "error:6 value out of range (TOOL -1: 0 < r <= 1e4)"},
+        {"TOOL BALL 1 SIDE", "error:9 unknown keyword (TOOL SIDE)"},
+        {"CURVE LINE 0 0 1 x", "error:4 not a number (CURVE x)"},
+        {"CURVE LINE 0 0 1e12 0", "error:6 value out of range (CURVE 1e12: |x| <= 1e9)"},
+        {"CURVE ARC 0 0 3 0 nan", "error:5 non-finite number (CURVE nan)"},
+        {"CURVE SPIRAL 1 2", "error:9 unknown keyword (CURVE SPIRAL)"},
+        {"STEPS -4", "error:4 not a number (STEPS -4)"},
+        {"CURVE ELLIPSE 0 0 0 25 0 360", "error:6 value out of range"}, /* no cause known */
+        {"CURVE LINE 0 0 1", "error:3 wrong number of arguments"},
+        {"FOO", "error:1 unknown command"},
+    };
+    char r[160];
+    size_t i;
+    rig_init();
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        CHECK(command(cases[i][0], r, sizeof r));
+        if (strcmp(r, cases[i][1]) != 0) {
+            printf("  \"%s\" -> \"%s\", want \"%s\"\n", cases[i][0], r, cases[i][1]);
+            return __LINE__;
+        }
+    }
+    return 0;
+}
+
 /* FRAMES: decode, ack every frame; drop one ack and NAK one frame on purpose. */
 static int frames_run(void)
 {

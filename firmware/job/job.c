@@ -239,13 +239,16 @@ int job_is_command(const char *line, size_t len)
 
 /* ---- the arguments ---- */
 
-/* Parse tokens first..first+n-1 as numbers into v[]. Returns a wire status. */
-static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, cp_real *v)
+/* Parse tokens first..first+n-1 as numbers into a->v[] (a failing one: a->bad). Returns a
+ * wire status. */
+static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, struct job_args *a)
 {
     unsigned i;
     for (i = 0; i < n; i++) {
-        int s = parse_real(t->line + t->st[first + i], t->ln[first + i], &v[i]);
+        int s = parse_real(t->line + t->st[first + i], t->ln[first + i], &a->v[i]);
         if (s != CP_ST_OK) {
+            a->bad = (uint8_t)(JOB_ARG_V + i);
+            a->limit = s == CP_ST_OUT_OF_RANGE ? "|x| <= 1e9" : NULL;
             return s;
         }
     }
@@ -261,6 +264,7 @@ static int word_args(const struct job_tokens *t, const struct job_cmd_row *r, st
     a->word = token_word(t, 1u, a->cmd, 0u);
     if (a->word == JOB_NO_WORD) {
         if (r->shape != JOB_ARGS_UINT_OR_WORD) {
+            a->bad = JOB_ARG_WORD;
             return CP_ST_BAD_KEYWORD;
         }
         *na = 1u; /* the unsigned number */
@@ -300,6 +304,9 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
     a->option = JOB_NO_WORD;
     a->option_value = 0u;
     a->u = 0u;
+    a->bad = JOB_ARG_NONE;
+    a->limit = NULL;
+    a->tok_u = 0u;
     switch (r->shape) {
     case JOB_ARGS_NUMBERS:
         if (t->n < 1u + r->min || t->n > 1u + r->max) {
@@ -311,6 +318,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         if (t->n == 3u + r->min && has_options(c)) { /* the option word first */
             a->option = token_word(t, t->n - 1u, c, 1u);
             if (a->option == JOB_NO_WORD) {
+                a->bad = JOB_ARG_OPTION;
                 return CP_ST_BAD_KEYWORD;
             }
             a->option_value = words[a->option].value;
@@ -336,21 +344,32 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         return CP_ST_BAD_ARITY;
     }
     if (uint) { /* the first argument is an unsigned number */
+        a->tok_u = (uint8_t)first;
         s = parse_uint(t->line + t->st[first], t->ln[first], UINT32_MAX, &a->u);
         if (s != CP_ST_OK) {
+            a->bad = JOB_ARG_U;
             return s;
         }
         first++;
         na--;
     }
     a->na = na;
-    return job_numbers(t, first, na, a->v);
+    a->tok_v = (uint8_t)first;
+    return job_numbers(t, first, na, a);
 }
 
 /* ---- job.c's own commands: the raster, the output, SURFACE ---- */
 
+/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). */
+static int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
+{
+    a->bad = (uint8_t)bad;
+    a->limit = limit;
+    return st;
+}
+
 /* TOOL NONE | BALL r [TIP|CENTRE|CENTER] */
-static int job_tool(struct job *j, const struct job_args *a)
+static int job_tool(struct job *j, struct job_args *a)
 {
     if (a->word == JOB_WORD_TOOL_NONE) {
         j->cfg.output = (uint8_t)a->value; /* RASTER_OUT_SURFACE */
@@ -358,10 +377,10 @@ static int job_tool(struct job *j, const struct job_args *a)
         return CP_ST_OK;
     }
     if (!(a->v[0] > CP_R(0.0)) || a->v[0] > CANAL_COORD_MAX) {
-        return CP_ST_OUT_OF_RANGE;
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 < r <= 1e4");
     }
     if (a->option == JOB_BAD_WORD) {
-        return CP_ST_BAD_KEYWORD;
+        return refuse(a, CP_ST_BAD_KEYWORD, JOB_ARG_OPTION, NULL);
     }
     /* the option's output, else the word's (BALL: the tip) */
     j->cfg.output = (uint8_t)(a->option == JOB_NO_WORD ? a->value : a->option_value);
@@ -370,17 +389,23 @@ static int job_tool(struct job *j, const struct job_args *a)
 }
 
 /* LINES | CIRCLES n u0 u1 [PATCH] */
-static int job_raster(struct job *j, const struct job_args *a)
+static int job_raster(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     uint32_t n = a->u;
     int circles = a->cmd == JOB_CMD_CIRCLES;
     if (n > CP_MAX_LINES) {
-        return CP_ST_TOO_MANY;
+        return refuse(a, CP_ST_TOO_MANY, JOB_ARG_U, "$I lines=");
     }
-    if (n == 0u || cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0) ||
-        (v[0] == v[1] && n > 1u)) {
-        return CP_ST_OUT_OF_RANGE;
+    if (n == 0u) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "n >= 1");
+    }
+    if (cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0)) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + (cp_fabs(v[0]) > CP_R(180.0) ? 0u : 1u),
+                      "|u| <= 180");
+    }
+    if (v[0] == v[1] && n > 1u) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "u0 != u1 for n > 1");
     }
     j->cfg.mode = circles ? RASTER_CIRCLES : RASTER_LINES;
     /* PATCH: between the lines that start at u0, u1; CIRCLES alone: the angles u0..u1 */
@@ -396,9 +421,11 @@ static int job_raster(struct job *j, const struct job_args *a)
 
 /* SURFACE <model>: the model's geometry starts afresh (the union holds one model; the
  * canal's and the raster's settings and have bits stay) */
-static int job_surface(struct job *j, const struct job_args *a)
+static int job_surface(struct job *j, struct job_args *a)
 {
     if (!path_has(a->value)) {
+        a->bad = JOB_ARG_WORD; /* a model not in this build ($I models=) */
+        a->limit = "$I models=";
         return CP_ST_BAD_KEYWORD;
     }
     model_defaults(a->value, &j->geom);
@@ -407,7 +434,7 @@ static int job_surface(struct job *j, const struct job_args *a)
 }
 
 /* The commands of owner JOB, their arguments checked (job_args_of). */
-static int job_own_command(struct job *j, const struct job_args *a)
+static int job_own_command(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     uint32_t u = a->u;
@@ -419,30 +446,30 @@ static int job_own_command(struct job *j, const struct job_args *a)
         return job_raster(j, a);
     case JOB_CMD_STEPS:
         if (u > CP_MAX_STEPS) {
-            return CP_ST_TOO_MANY;
+            return refuse(a, CP_ST_TOO_MANY, JOB_ARG_U, "$I steps=");
         }
         if (u == 0u) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "m >= 1");
         }
         j->cfg.steps = (uint16_t)u;
         j->cfg.tol = CP_R(0.0);
         return CP_ST_OK;
     case JOB_CMD_TOL:
         if (v[0] < CP_R(0.01) || v[0] > CP_R(10000.0)) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0.01..10000");
         }
         j->cfg.tol = v[0] * CP_R(0.001);
         j->cfg.steps = 0;
         return CP_ST_OK;
     case JOB_CMD_FEED:
         if (v[0] < CP_R(0.0) || v[0] > JOB_FEED_MAX || (v[0] > CP_R(0.0) && v[0] < JOB_FEED_MIN)) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 or 0.05..1e6");
         }
         j->feed = v[0];
         return CP_ST_OK;
     case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "96..1024");
         }
         j->rxbuf = (uint16_t)u;
         return CP_ST_OK;
@@ -623,6 +650,22 @@ int job_command(struct job *j, const char *line, size_t len)
     return job_line(j, line, len, &first);
 }
 
+/* The cause of a refusal (a->bad, a->limit) into j->cause_*: the token of the argument that
+ * failed. */
+static void job_cause(struct job *j, const struct job_tokens *t, const struct job_args *a)
+{
+    unsigned k = a->bad == JOB_ARG_U        ? a->tok_u
+                 : a->bad == JOB_ARG_WORD   ? 1u
+                 : a->bad == JOB_ARG_OPTION ? t->n - 1u
+                 : a->bad >= JOB_ARG_V      ? a->tok_v + (a->bad - JOB_ARG_V)
+                                            : 0u;
+    if (k > 0u && k < t->n && k < JOB_MAX_TOKENS) {
+        j->cause_st = (uint8_t)t->st[k];
+        j->cause_len = (uint8_t)t->ln[k];
+    }
+    j->cause_limit = a->limit;
+}
+
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
 {
     struct job_tokens t;
@@ -631,6 +674,8 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
     unsigned c;
     int s;
     t.line = line;
+    j->cause_len = 0u;
+    j->cause_limit = NULL;
     t.n = parse_split(line, len, t.st, t.ln, JOB_MAX_TOKENS);
     /* (parse_split stored at most JOB_MAX_TOKENS tokens: n beyond that is error:3) */
     c = t.n > 0u ? find_cmd(line + t.st[0], t.ln[0]) : JOB_CMDS;
@@ -659,8 +704,11 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
         }
         return s == CP_ST_OUT_OF_RANGE ? CP_ST_RESUME_RANGE : s;
     }
-    if (s != CP_ST_OK) {
-        return s;
+    if (s == CP_ST_OK) {
+        s = owner_command(j, r->owner, &a);
     }
-    return owner_command(j, r->owner, &a);
+    if (s != CP_ST_OK) {
+        job_cause(j, &t, &a);
+    }
+    return s;
 }

@@ -76,6 +76,11 @@ struct job {
     uint8_t kind;            /* enum path_kind (SURFACE), default PATH_CANAL */
     uint8_t format;          /* enum job_format */
     uint8_t checksum;        /* 1: N<n> ... *<cs> line numbers and checksums */
+    /* the cause of the last refused command (job_line), for the protocol's error reply;
+     * not a setting (not dumped): the failing token line[cause_st .. + cause_len) of that
+     * line (cause_len 0: none known) and the limit it broke (NULL: none given) */
+    uint8_t cause_st, cause_len;
+    const char *cause_limit;
 };
 
 /* Most numbers of one command (SECTION's 9). */
@@ -148,7 +153,20 @@ struct job_args {
     uint32_t u;                 /* the unsigned number (UINT_* shapes), 0 without one */
     cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
     uint8_t scale[JOB_MAX_NUMBERS]; /* job_dump only: enum job_scale of v[i] */
+    /* the cause of a refusal: which argument failed (JOB_ARG_*: job_line's checks set it,
+     * a hook sets it with its error) and the limit it broke (a hook's, NULL if none) */
+    uint8_t bad;
+    uint8_t tok_v, tok_u; /* (job_line's) token index of v[0] and of the unsigned number */
+    const char *limit;
 };
+
+/* job_args.bad: no argument named, the number v[k] (JOB_ARG_V + k), the unsigned
+ * number, the word, the option word. */
+#define JOB_ARG_NONE 0u
+#define JOB_ARG_U 1u
+#define JOB_ARG_WORD 2u
+#define JOB_ARG_OPTION 3u
+#define JOB_ARG_V 4u
 
 /* How a dumped number (job_dump) is stored: the job holds scale * (the wire's number). */
 enum job_scale {

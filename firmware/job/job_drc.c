@@ -47,9 +47,11 @@ int job_drc_command(struct job *j, struct job_args *a)
         q.z = a->na == 2u ? CP_R(0.0) : v[2];
         err = drc_point_check(&q, 1); /* drc_path_init's checks of the point alone */
         if (err != CP_OK) {
+            a->limit = err == CP_ERR_OFF_PLANE ? "z = 0" : "|x|, |y|, |z| <= 1e4";
             return cp_status_of(err);
         }
         if (g->n >= CP_MAX_DRC_POINTS) {
+            a->limit = "POINTS CLEAR";
             return CP_ST_TOO_MANY;
         }
         g->p[g->n] = q;
@@ -64,6 +66,7 @@ int job_drc_command(struct job *j, struct job_args *a)
             return CP_ST_OK;
         }
         if (a->u > CP_MAX_PASSES) {
+            a->bad = JOB_ARG_U;
             return CP_ST_TOO_MANY;
         }
         g->passes = (uint8_t)a->u;

@@ -95,6 +95,8 @@ int job_gsr_command(struct job *j, struct job_args *a)
     int err;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
+            a->bad = (uint8_t)(JOB_ARG_V + i);
+            a->limit = i == GSR_W ? "|w| <= 23040" : "|x| <= 1e4";
             return CP_ST_OUT_OF_RANGE;
         }
     }
@@ -122,6 +124,7 @@ int job_gsr_command(struct job *j, struct job_args *a)
     case GSR_CMD_FRAME: /* k: enum gsr_frame_kind; N0 and RMF with their reference */
         if (na != 0u) {
             if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > CP_R(0.0))) {
+                a->limit = "x y z != 0 0 0";
                 return CP_ST_OUT_OF_RANGE;
             }
             c->ref.x = v[0];

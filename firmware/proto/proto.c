@@ -95,6 +95,49 @@ static void reply_status(struct proto *p, int code)
     tx_str(p, "\n");
 }
 
+/* Append s[0..n) to the tx buffer (at most the room left). */
+static void tx_mem(struct proto *p, const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n && p->tx_len < CP_TX_BUF; i++) {
+        p->tx[p->tx_len++] = (uint8_t)s[i];
+    }
+}
+
+/* The reply to a command line: reply_status, and for an error whose cause job_line named
+ * "error:<code> <text> (<keyword> <token>: <limit>)", the token as typed (its first
+ * PROTO_CAUSE_TOKEN_MAX chars) and the limit it broke, each part only when known. The
+ * line (trimmed: its keyword first) is still in p->line. */
+#define PROTO_CAUSE_TOKEN_MAX 24u
+static void reply_command(struct proto *p, int code)
+{
+    const struct job *j = &p->job;
+    size_t kw = 0;
+    if (code == CP_ST_OK || (j->cause_len == 0u && j->cause_limit == NULL)) {
+        reply_status(p, code);
+        return;
+    }
+    while (kw < p->line_len && kw < PARSE_KW_MAX && p->line[kw] != ' ') {
+        kw++;
+    }
+    tx_str(p, "error:");
+    tx_u32(p, (uint32_t)code);
+    tx_str(p, " ");
+    tx_str(p, cp_status_text(code));
+    tx_str(p, " (");
+    tx_mem(p, p->line, kw);
+    if (j->cause_len != 0u && (size_t)j->cause_st + j->cause_len <= p->line_len) {
+        tx_str(p, " ");
+        tx_mem(p, p->line + j->cause_st,
+               j->cause_len < PROTO_CAUSE_TOKEN_MAX ? j->cause_len : PROTO_CAUSE_TOKEN_MAX);
+    }
+    if (j->cause_limit != NULL) {
+        tx_str(p, ": ");
+        tx_str(p, j->cause_limit);
+    }
+    tx_str(p, ")\n");
+}
+
 /* "[VER:canalpath <fw> proto <n>]" and "[OPT:real=..,line=..,...,models=..]" */
 static void reply_info(struct proto *p)
 {
@@ -380,7 +423,7 @@ static void exec_line(struct proto *p)
             return;
         }
     }
-    reply_status(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
+    reply_command(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
 }
 
 /* Real-time bytes act at once, outside the line assembly (grbl). */
