@@ -224,12 +224,14 @@ void job_init(struct job *j);
 
 /* Apply one command line (trimmed, no terminator). Returns a wire status
  * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE (also for
- * RUN and RESUME, the protocol's commands). */
+ * RUN, RESUME and $J, the protocol's commands). */
 int job_command(struct job *j, const char *line, size_t len);
 
 /* job_command for the protocol: the same, except that RUN alone on its line (RUN with
  * anything after it is JOB_NOT_MINE) and RESUME k return JOB_RUN with *first = 0 or k
- * (the job is unchanged). RESUME checks as the other commands: error:3 unless exactly
+ * (the job is unchanged), and $J alone on its line JOB_DUMP (the protocol prints
+ * job_dump's lines). On an error it sets j->cause_* (the failing token and limit, when
+ * known) for the reply; every other line clears them. RESUME checks as the other commands: error:3 unless exactly
  * one argument, error:4 if k is not an unsigned decimal number, error:21 above
  * 2^32 - 1 (proto.c checks k against the run's point count). */
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first);
