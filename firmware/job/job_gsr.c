@@ -110,6 +110,9 @@ int job_gsr_command(struct job *j, struct job_args *a)
     case GSR_CMD_RADII: /* k: f_N, f_B, f_t (which has a default) */
         err = gsr_fn_check(v, k); /* gsr_init's checks of the function alone */
         if (err != CP_OK) {
+            a->limit = err == CP_ERR_SECTION    ? "f > 0 at u = k/256"
+                       : err == CP_ERR_FT_RANGE ? "0 <= f_t <= 1, increasing"
+                                                : NULL;
             return cp_status_of(err);
         }
         for (i = 0; i < GSR_FN; i++) {
