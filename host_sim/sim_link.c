@@ -204,6 +204,16 @@ int sim_link_read_line(struct sim_link *l, uint64_t deadline_ms)
     }
 }
 
+int sim_link_text_is(const char *s, size_t n, const char *want)
+{
+    size_t w = strlen(want);
+    if (n < w || memcmp(s, want, w) != 0) {
+        return 0;
+    }
+    /* the text alone, or followed by the cause " (...)" (PROTOCOL.md "Lines") */
+    return n == w || (n >= w + 3u && s[w] == ' ' && s[w + 1u] == '(' && s[n - 1u] == ')');
+}
+
 /* "error:<code> <text>": 1 and fills r, else 0 (malformed). */
 static int link_parse_error(const char *s, size_t n, struct sim_reply *r)
 {
@@ -223,7 +233,7 @@ static int link_parse_error(const char *s, size_t n, struct sim_reply *r)
     want = link_status_text(code);
     r->error = 1;
     r->code = code;
-    r->text_ok = want != NULL && strcmp(s + i + 1, want) == 0;
+    r->text_ok = want != NULL && sim_link_text_is(s + i + 1, n - i - 1, want);
     return 1;
 }
 

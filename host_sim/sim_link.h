@@ -98,6 +98,10 @@ int sim_link_await(struct sim_link *l, uint64_t deadline_ms, struct sim_reply *r
 /* Text of wire status `code` from firmware/base/cp_status.def, or NULL if unknown. */
 const char *sim_link_status_text(int code);
 
+/* 1 if the reply text s[0..n) is want, alone or followed by the firmware's cause
+ * " (<keyword> <token>: <limit>)" (docs/PROTOCOL.md "Lines"), else 0. */
+int sim_link_text_is(const char *s, size_t n, const char *want);
+
 /* Text of an enum sim_link_rc. */
 const char *sim_link_strerror(int rc);
 

@@ -130,7 +130,7 @@ static int run_error_line(struct run *u, const char *s)
     want = sim_link_status_text((int)code);
     u->r->error = 1;
     u->r->code = (int)code;
-    u->r->text_ok = *e == ' ' && want != NULL && strcmp(e + 1, want) == 0;
+    u->r->text_ok = *e == ' ' && want != NULL && sim_link_text_is(e + 1, strlen(e + 1), want);
     return 1;
 }
 

@@ -368,8 +368,12 @@ static void text_line(char *l)
     if (strncmp(l, "error:", 6) == 0) {
         char *end;
         long code = strtol(l + 6, &end, 10);
+        size_t tl = code >= 1 && code < CP_ST_END_ ? strlen(status_text[code]) : 0u;
+        /* the text, alone or followed by the cause " (...)" (PROTOCOL.md "Lines") */
         if (end == l + 6 || code < 1 || code >= CP_ST_END_ || *end != ' ' ||
-            strcmp(end + 1, status_text[code]) != 0) {
+            strncmp(end + 1, status_text[code], tl) != 0 ||
+            (end[1 + tl] != '\0' &&
+             (strncmp(end + 1 + tl, " (", 2) != 0 || l[strlen(l) - 1] != ')'))) {
             FAIL("bad error line \"%s\"", l);
         }
         saw_ok = 1;

@@ -607,7 +607,14 @@ int test_property_random_invalid(void)
         }
         code = strtol(first + 6, &end, 10);
         CHECK(code >= 1 && code < CP_ST_END_);
-        CHECK(*end == ' ' && strcmp(end + 1, cp_status_text((int)code)) == 0);
+        /* "error:<code> <text>", then optionally " (<cause>)" (PROTOCOL.md) */
+        {
+            const char *text = cp_status_text((int)code);
+            size_t tl = strlen(text), fl;
+            CHECK(*end == ' ' && strncmp(end + 1, text, tl) == 0);
+            fl = strlen(end + 1 + tl);
+            CHECK(fl == 0 || (strncmp(end + 1 + tl, " (", 2) == 0 && end[tl + fl] == ')'));
+        }
         by_code[code]++;
         by_cat[cat]++;
         /* the engine still answers */

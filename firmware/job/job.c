@@ -239,13 +239,16 @@ int job_is_command(const char *line, size_t len)
 
 /* ---- the arguments ---- */
 
-/* Parse tokens first..first+n-1 as numbers into v[]. Returns a wire status. */
-static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, cp_real *v)
+/* Parse tokens first..first+n-1 as numbers into a->v[] (a failing one: a->bad). Returns a
+ * wire status. */
+static int job_numbers(const struct job_tokens *t, unsigned first, unsigned n, struct job_args *a)
 {
     unsigned i;
     for (i = 0; i < n; i++) {
-        int s = parse_real(t->line + t->st[first + i], t->ln[first + i], &v[i]);
+        int s = parse_real(t->line + t->st[first + i], t->ln[first + i], &a->v[i]);
         if (s != CP_ST_OK) {
+            a->bad = (uint8_t)(JOB_ARG_V + i);
+            a->limit = s == CP_ST_OUT_OF_RANGE ? "|x| <= 1e9" : NULL;
             return s;
         }
     }
@@ -261,6 +264,7 @@ static int word_args(const struct job_tokens *t, const struct job_cmd_row *r, st
     a->word = token_word(t, 1u, a->cmd, 0u);
     if (a->word == JOB_NO_WORD) {
         if (r->shape != JOB_ARGS_UINT_OR_WORD) {
+            a->bad = JOB_ARG_WORD;
             return CP_ST_BAD_KEYWORD;
         }
         *na = 1u; /* the unsigned number */
@@ -300,6 +304,9 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
     a->option = JOB_NO_WORD;
     a->option_value = 0u;
     a->u = 0u;
+    a->bad = JOB_ARG_NONE;
+    a->limit = NULL;
+    a->tok_u = 0u;
     switch (r->shape) {
     case JOB_ARGS_NUMBERS:
         if (t->n < 1u + r->min || t->n > 1u + r->max) {
@@ -311,6 +318,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         if (t->n == 3u + r->min && has_options(c)) { /* the option word first */
             a->option = token_word(t, t->n - 1u, c, 1u);
             if (a->option == JOB_NO_WORD) {
+                a->bad = JOB_ARG_OPTION;
                 return CP_ST_BAD_KEYWORD;
             }
             a->option_value = words[a->option].value;
@@ -336,21 +344,32 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         return CP_ST_BAD_ARITY;
     }
     if (uint) { /* the first argument is an unsigned number */
+        a->tok_u = (uint8_t)first;
         s = parse_uint(t->line + t->st[first], t->ln[first], UINT32_MAX, &a->u);
         if (s != CP_ST_OK) {
+            a->bad = JOB_ARG_U;
             return s;
         }
         first++;
         na--;
     }
     a->na = na;
-    return job_numbers(t, first, na, a->v);
+    a->tok_v = (uint8_t)first;
+    return job_numbers(t, first, na, a);
 }
 
 /* ---- job.c's own commands: the raster, the output, SURFACE ---- */
 
+/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). */
+static int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
+{
+    a->bad = (uint8_t)bad;
+    a->limit = limit;
+    return st;
+}
+
 /* TOOL NONE | BALL r [TIP|CENTRE|CENTER] */
-static int job_tool(struct job *j, const struct job_args *a)
+static int job_tool(struct job *j, struct job_args *a)
 {
     if (a->word == JOB_WORD_TOOL_NONE) {
         j->cfg.output = (uint8_t)a->value; /* RASTER_OUT_SURFACE */
@@ -358,10 +377,10 @@ static int job_tool(struct job *j, const struct job_args *a)
         return CP_ST_OK;
     }
     if (!(a->v[0] > CP_R(0.0)) || a->v[0] > CANAL_COORD_MAX) {
-        return CP_ST_OUT_OF_RANGE;
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 < r <= 1e4");
     }
     if (a->option == JOB_BAD_WORD) {
-        return CP_ST_BAD_KEYWORD;
+        return refuse(a, CP_ST_BAD_KEYWORD, JOB_ARG_OPTION, NULL);
     }
     /* the option's output, else the word's (BALL: the tip) */
     j->cfg.output = (uint8_t)(a->option == JOB_NO_WORD ? a->value : a->option_value);
@@ -370,17 +389,23 @@ static int job_tool(struct job *j, const struct job_args *a)
 }
 
 /* LINES | CIRCLES n u0 u1 [PATCH] */
-static int job_raster(struct job *j, const struct job_args *a)
+static int job_raster(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     uint32_t n = a->u;
     int circles = a->cmd == JOB_CMD_CIRCLES;
     if (n > CP_MAX_LINES) {
-        return CP_ST_TOO_MANY;
+        return refuse(a, CP_ST_TOO_MANY, JOB_ARG_U, "$I lines=");
     }
-    if (n == 0u || cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0) ||
-        (v[0] == v[1] && n > 1u)) {
-        return CP_ST_OUT_OF_RANGE;
+    if (n == 0u) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "n >= 1");
+    }
+    if (cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0)) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + (cp_fabs(v[0]) > CP_R(180.0) ? 0u : 1u),
+                      "|u| <= 180");
+    }
+    if (v[0] == v[1] && n > 1u) {
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "u0 != u1 for n > 1");
     }
     j->cfg.mode = circles ? RASTER_CIRCLES : RASTER_LINES;
     /* PATCH: between the lines that start at u0, u1; CIRCLES alone: the angles u0..u1 */
@@ -396,9 +421,11 @@ static int job_raster(struct job *j, const struct job_args *a)
 
 /* SURFACE <model>: the model's geometry starts afresh (the union holds one model; the
  * canal's and the raster's settings and have bits stay) */
-static int job_surface(struct job *j, const struct job_args *a)
+static int job_surface(struct job *j, struct job_args *a)
 {
     if (!path_has(a->value)) {
+        a->bad = JOB_ARG_WORD; /* a model not in this build ($I models=) */
+        a->limit = "$I models=";
         return CP_ST_BAD_KEYWORD;
     }
     model_defaults(a->value, &j->geom);
@@ -408,14 +435,17 @@ static int job_surface(struct job *j, const struct job_args *a)
 
 /* PLACE x y z [rz] | TILT axis_deg angle_deg: every number finite and in range (error:6),
  * else the job unchanged */
-static int job_place_cmd(struct job *j, const struct job_args *a)
+static int job_place_cmd(struct job *j, struct job_args *a)
 {
     struct job_place *pl = &j->place;
     const cp_real *v = a->v;
     unsigned i;
     if (a->cmd == JOB_CMD_TILT) {
-        if (!(cp_fabs(v[0]) <= JOB_TILT_AXIS_MAX) || !(cp_fabs(v[1]) <= JOB_TILT_MAX)) {
-            return CP_ST_OUT_OF_RANGE;
+        if (!(cp_fabs(v[0]) <= JOB_TILT_AXIS_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|axis| <= 360");
+        }
+        if (!(cp_fabs(v[1]) <= JOB_TILT_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "|angle| <= 90");
         }
         pl->axis = v[0];
         pl->tilt = v[1];
@@ -423,11 +453,11 @@ static int job_place_cmd(struct job *j, const struct job_args *a)
     }
     for (i = 0; i < 3u; i++) {
         if (!(cp_fabs(v[i]) <= JOB_PLACE_OFF_MAX)) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + i, "|x|, |y|, |z| <= 1000");
         }
     }
     if (a->na == 4u && !(cp_fabs(v[3]) <= JOB_PLACE_RZ_MAX)) {
-        return CP_ST_OUT_OF_RANGE;
+        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 3u, "|rz| <= 360");
     }
     for (i = 0; i < 3u; i++) {
         pl->off[i] = v[i];
@@ -437,7 +467,7 @@ static int job_place_cmd(struct job *j, const struct job_args *a)
 }
 
 /* The commands of owner JOB, their arguments checked (job_args_of). */
-static int job_own_command(struct job *j, const struct job_args *a)
+static int job_own_command(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     uint32_t u = a->u;
@@ -449,30 +479,30 @@ static int job_own_command(struct job *j, const struct job_args *a)
         return job_raster(j, a);
     case JOB_CMD_STEPS:
         if (u > CP_MAX_STEPS) {
-            return CP_ST_TOO_MANY;
+            return refuse(a, CP_ST_TOO_MANY, JOB_ARG_U, "$I steps=");
         }
         if (u == 0u) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "m >= 1");
         }
         j->cfg.steps = (uint16_t)u;
         j->cfg.tol = CP_R(0.0);
         return CP_ST_OK;
     case JOB_CMD_TOL:
         if (v[0] < CP_R(0.01) || v[0] > CP_R(10000.0)) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0.01..10000");
         }
         j->cfg.tol = v[0] * CP_R(0.001);
         j->cfg.steps = 0;
         return CP_ST_OK;
     case JOB_CMD_FEED:
         if (v[0] < CP_R(0.0) || v[0] > JOB_FEED_MAX || (v[0] > CP_R(0.0) && v[0] < JOB_FEED_MIN)) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 or 0.05..1e6");
         }
         j->feed = v[0];
         return CP_ST_OK;
     case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
-            return CP_ST_OUT_OF_RANGE;
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "96..1024");
         }
         j->rxbuf = (uint16_t)u;
         return CP_ST_OK;
@@ -487,6 +517,9 @@ static int job_own_command(struct job *j, const struct job_args *a)
     case JOB_CMD_PLACE:
     case JOB_CMD_TILT:
         return job_place_cmd(j, a);
+    case JOB_CMD_CLEAR: /* JOB CLEAR: the defaults */
+        job_init(j);
+        return CP_ST_OK;
     default: /* not JOB's (unreachable: job_line calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }
@@ -505,6 +538,156 @@ static int owner_command(struct job *j, unsigned owner, struct job_args *a)
     }
 }
 
+/* ---- the job as command lines ($J) ---- */
+
+const char *job_keyword(enum job_cmd c)
+{
+    return (unsigned)c < (unsigned)JOB_CMDS ? cmds[c].keyword : "";
+}
+
+const char *job_word_text(enum job_word w)
+{
+    return (unsigned)w < (unsigned)JOB_WORDS ? words[w].text : "";
+}
+
+unsigned job_shape_of(enum job_cmd c)
+{
+    return (unsigned)c < (unsigned)JOB_CMDS ? cmds[c].shape : JOB_ARGS_ALONE;
+}
+
+enum job_word job_word_of(enum job_cmd c, unsigned value, unsigned option)
+{
+    unsigned w;
+    for (w = 0; w < (unsigned)JOB_WORDS; w++) {
+        if (words[w].cmd == c && words[w].option == option && words[w].value == value) {
+            return (enum job_word)w;
+        }
+    }
+    return JOB_NO_WORD;
+}
+
+void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
+{
+    unsigned i;
+    a->cmd = c;
+    a->word = w;
+    a->value = 0u;
+    a->option = JOB_NO_WORD;
+    a->option_value = 0u;
+    a->na = (unsigned)w < (unsigned)JOB_WORDS ? words[w].numbers : 0u;
+    a->u = 0u;
+    for (i = 0; i < JOB_MAX_NUMBERS; i++) {
+        a->v[i] = CP_R(0.0);
+        a->scale[i] = JOB_SCALE_ONE;
+    }
+}
+
+/* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them): TOOL, LINES or
+ * CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE, PLACE, TILT; SKIP at the
+ * default. */
+#define JOB_DUMP_ITEMS_OWN 10u
+static int dump_own(const struct job *j, unsigned i, struct job_args *a)
+{
+    const struct raster_cfg *c = &j->cfg;
+    static const uint8_t cmd_of[JOB_DUMP_ITEMS_OWN] = {
+        JOB_CMD_TOOL,   JOB_CMD_LINES, JOB_CMD_STEPS,    JOB_CMD_FEED,
+        JOB_CMD_FORMAT, JOB_CMD_RXBUF, JOB_CMD_CHECKSUM, JOB_CMD_SURFACE,
+        JOB_CMD_PLACE,  JOB_CMD_TILT};
+    static const uint8_t skip_value[JOB_DUMP_ITEMS_OWN] = {
+        [4] = JOB_GCODE, [6] = 0u, [7] = PATH_CANAL}; /* FORMAT, CHECKSUM, SURFACE defaults */
+    unsigned value = i == 4u ? j->format : i == 6u ? j->checksum : j->kind;
+    job_dump_args(a, (enum job_cmd)cmd_of[i], JOB_NO_WORD);
+    switch (i) {
+    case 0: /* TOOL BALL r [CENTRE] (TIP is BALL's own); NONE is the default */
+        if (c->output == RASTER_OUT_SURFACE) {
+            return JOB_DUMP_SKIP;
+        }
+        job_dump_args(a, JOB_CMD_TOOL, JOB_WORD_TOOL_BALL);
+        a->v[0] = c->tool_r;
+        a->option = c->output == RASTER_OUT_CENTRE ? JOB_WORD_TOOL_CENTRE : JOB_NO_WORD;
+        return JOB_DUMP_LINE;
+    case 1: /* LINES | CIRCLES n u0 u1 [PATCH] */
+        if ((j->have & JOB_HAVE_RASTER) == 0u) {
+            return JOB_DUMP_SKIP;
+        }
+        a->cmd = c->mode == RASTER_CIRCLES ? JOB_CMD_CIRCLES : JOB_CMD_LINES;
+        a->option = c->mode == RASTER_CIRCLES && c->span == RASTER_SPAN_LINES
+                        ? JOB_WORD_CIRCLES_PATCH
+                        : JOB_NO_WORD;
+        a->u = c->n;
+        a->na = 2u;
+        a->v[0] = c->u0;
+        a->v[1] = c->u1;
+        a->scale[0] = a->scale[1] = JOB_SCALE_DEG;
+        return JOB_DUMP_LINE;
+    case 2: /* STEPS m | TOL chord_um (TOL 1 is the default) */
+        if (c->steps != 0u) {
+            a->u = c->steps;
+            return JOB_DUMP_LINE;
+        }
+        a->cmd = JOB_CMD_TOL;
+        a->na = 1u;
+        a->v[0] = c->tol;
+        a->scale[0] = JOB_SCALE_MILLI;
+        return c->tol == CP_R(0.001) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case 3: /* FEED f */
+        a->na = 1u;
+        a->v[0] = j->feed;
+        return j->feed == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case 5: /* RXBUF n */
+        a->u = j->rxbuf;
+        return j->rxbuf == 128u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case 8: /* PLACE x y z rz (mm, degrees as given) */
+        a->na = 4u;
+        a->v[0] = j->place.off[0];
+        a->v[1] = j->place.off[1];
+        a->v[2] = j->place.off[2];
+        a->v[3] = j->place.rz;
+        return a->v[0] == CP_R(0.0) && a->v[1] == CP_R(0.0) && a->v[2] == CP_R(0.0) &&
+                       a->v[3] == CP_R(0.0)
+                   ? JOB_DUMP_SKIP
+                   : JOB_DUMP_LINE;
+    case 9: /* TILT axis angle (degrees as given) */
+        a->na = 2u;
+        a->v[0] = j->place.axis;
+        a->v[1] = j->place.tilt;
+        return j->place.tilt == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    default: /* FORMAT, CHECKSUM, SURFACE: a word of the value */
+        a->word = job_word_of(a->cmd, value, 0u);
+        return value == skip_value[i] ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    }
+}
+
+/* The model of the job's items. */
+static int dump_model(const struct job *j, unsigned i, struct job_args *a)
+{
+    switch (j->kind) {
+#define CP_MODEL(NAME, name, WITH, WORD)                                                           \
+    PATH_IF(WITH, case PATH_##NAME : return job_##name##_dump(j, i, a);)
+#include "models.def"
+#undef CP_MODEL
+    default:
+        return JOB_DUMP_END;
+    }
+}
+
+int job_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    int r;
+    if (i < JOB_DUMP_ITEMS_OWN) {
+        return dump_own(j, i, a);
+    }
+    i -= JOB_DUMP_ITEMS_OWN;
+    if (i < JOB_CANAL_ITEMS) { /* CURVE, RADIUS: every SURFACE's */
+        return job_canal_dump(j, i, a);
+    }
+    if (j->kind == PATH_CANAL) {
+        return JOB_DUMP_END;
+    }
+    r = dump_model(j, i - JOB_CANAL_ITEMS, a);
+    return r;
+}
+
 /* ---- the lines ---- */
 
 int job_command(struct job *j, const char *line, size_t len)
@@ -520,6 +703,22 @@ int job_command(struct job *j, const char *line, size_t len)
     return job_line(j, line, len, &first);
 }
 
+/* The cause of a refusal (a->bad, a->limit) into j->cause_*: the token of the argument that
+ * failed. */
+static void job_cause(struct job *j, const struct job_tokens *t, const struct job_args *a)
+{
+    unsigned k = a->bad == JOB_ARG_U        ? a->tok_u
+                 : a->bad == JOB_ARG_WORD   ? 1u
+                 : a->bad == JOB_ARG_OPTION ? t->n - 1u
+                 : a->bad >= JOB_ARG_V      ? a->tok_v + (a->bad - JOB_ARG_V)
+                                            : 0u;
+    if (k > 0u && k < t->n && k < JOB_MAX_TOKENS) {
+        j->cause_st = (uint8_t)t->st[k];
+        j->cause_len = (uint8_t)t->ln[k];
+    }
+    j->cause_limit = a->limit;
+}
+
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
 {
     struct job_tokens t;
@@ -528,6 +727,8 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
     unsigned c;
     int s;
     t.line = line;
+    j->cause_len = 0u;
+    j->cause_limit = NULL;
     t.n = parse_split(line, len, t.st, t.ln, JOB_MAX_TOKENS);
     /* (parse_split stored at most JOB_MAX_TOKENS tokens: n beyond that is error:3) */
     c = t.n > 0u ? find_cmd(line + t.st[0], t.ln[0]) : JOB_CMDS;
@@ -535,9 +736,12 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
         return JOB_NOT_MINE;
     }
     r = &cmds[c];
-    if (r->shape == JOB_ARGS_ALONE) { /* RUN: alone on its line (the line is trimmed) */
+    if (r->shape == JOB_ARGS_ALONE) { /* RUN, $J: alone on their line (the line is trimmed) */
         *first_k = 0u;
-        return t.n == 1u ? JOB_RUN : JOB_NOT_MINE;
+        if (t.n != 1u) {
+            return JOB_NOT_MINE;
+        }
+        return c == PROTO_CMD_DUMP ? JOB_DUMP : JOB_RUN;
     }
     if (t.n > JOB_MAX_TOKENS) {
         return CP_ST_BAD_ARITY;
@@ -553,8 +757,11 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
         }
         return s == CP_ST_OUT_OF_RANGE ? CP_ST_RESUME_RANGE : s;
     }
-    if (s != CP_ST_OK) {
-        return s;
+    if (s == CP_ST_OK) {
+        s = owner_command(j, r->owner, &a);
     }
-    return owner_command(j, r->owner, &a);
+    if (s != CP_ST_OK) {
+        job_cause(j, &t, &a);
+    }
+    return s;
 }

@@ -21,12 +21,15 @@
  *                            about Z (degrees, |rz| <= 360, default 0); error:6 out of range
  *   TILT axis_deg angle_deg  the base plane inclined by angle_deg (|.| <= 90) about the
  *                            table line at axis_deg (|.| <= 360) through the part's origin
+ *   JOB CLEAR                the defaults (job_init); $J (the protocol's) prints the job
  *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL; the words
  *                            of models.def); a new SURFACE starts that model's geometry
  *                            afresh (path.h)
  * Every command is a row of commands.def (its keyword, argument shape, words and
- * owner). Every command validates its arguments at once; the geometry is validated at
- * RUN (path_init), each failure with its own wire status (cp_status.def).
+ * owner). Every command validates its arguments at once, with every check of the model's
+ * init that needs the command alone (CURVE: canal_curve_check, RADIUS: canal_radius_check,
+ * ...: the same code as at RUN); what needs the combination is validated at RUN
+ * (path_init), each failure with its own wire status (cp_status.def).
  * A model's own geometry commands (job_<m>.c) need its SURFACE first (error:24).
  */
 #ifndef JOB_H
@@ -80,6 +83,8 @@ struct job_place {
 #define JOB_NOT_MINE (-1)
 /* Returned by job_line for RUN (alone on its line) or RESUME k: the protocol's run. */
 #define JOB_RUN (-2)
+/* Returned by job_line for $J (alone on its line): the protocol prints the job (job_dump). */
+#define JOB_DUMP (-3)
 
 struct job {
     struct raster_cfg cfg;  /* raster (every model), C units (radians) */
@@ -94,6 +99,11 @@ struct job {
     uint8_t kind;            /* enum path_kind (SURFACE), default PATH_CANAL */
     uint8_t format;          /* enum job_format */
     uint8_t checksum;        /* 1: N<n> ... *<cs> line numbers and checksums */
+    /* the cause of the last refused command (job_line), for the protocol's error reply;
+     * not a setting (not dumped): the failing token line[cause_st .. + cause_len) of that
+     * line (cause_len 0: none known) and the limit it broke (NULL: none given) */
+    uint8_t cause_st, cause_len;
+    const char *cause_limit;
 };
 
 /* Most numbers of one command (SECTION's 9). */
@@ -165,7 +175,36 @@ struct job_args {
     unsigned na;                /* numbers in v[] */
     uint32_t u;                 /* the unsigned number (UINT_* shapes), 0 without one */
     cp_real v[JOB_MAX_NUMBERS]; /* the numbers, in line order */
+    uint8_t scale[JOB_MAX_NUMBERS]; /* job_dump only: enum job_scale of v[i] */
+    /* the cause of a refusal: which argument failed (JOB_ARG_*: job_line's checks set it,
+     * a hook sets it with its error) and the limit it broke (a hook's, NULL if none) */
+    uint8_t bad;
+    uint8_t tok_v, tok_u; /* (job_line's) token index of v[0] and of the unsigned number */
+    const char *limit;
 };
+
+/* job_args.bad: no argument named, the number v[k] (JOB_ARG_V + k), the unsigned
+ * number, the word, the option word. */
+#define JOB_ARG_NONE 0u
+#define JOB_ARG_U 1u
+#define JOB_ARG_WORD 2u
+#define JOB_ARG_OPTION 3u
+#define JOB_ARG_V 4u
+
+/* How a dumped number (job_dump) is stored: the job holds scale * (the wire's number). */
+enum job_scale {
+    JOB_SCALE_ONE = 0, /* as on the wire */
+    JOB_SCALE_DEG,     /* degrees on the wire, radians in the job (CP_DEG2RAD) */
+    JOB_SCALE_MILLI    /* TOL: um on the wire, mm in the job (0.001) */
+};
+/* The wire factor of enum job_scale s (the job holds factor * the wire's number). */
+#define JOB_SCALE_FACTOR(s)                                                                        \
+    ((s) == JOB_SCALE_DEG ? CP_DEG2RAD : (s) == JOB_SCALE_MILLI ? CP_R(0.001) : CP_R(1.0))
+
+/* job_dump's and the models' job_<m>_dump answers for item i. */
+#define JOB_DUMP_LINE 1  /* *a is the command line of item i */
+#define JOB_DUMP_SKIP 0  /* item i is at its default: no line */
+#define JOB_DUMP_END (-1) /* no item i or later */
 
 /* A model's hooks, one set per row of models.def (firmware/job/job_<name>.c, declared here
  * from the rows), called directly from job.c (no function pointers: the static stack
@@ -178,6 +217,11 @@ struct job_args {
  *        SURFACE <m>: the model's geometry afresh
  *   int  job_<m>_ready(const struct job *j)
  *        1 when the job has all RUN needs for the model, else 0 (job_ready: error:10)
+ *   int  job_<m>_dump(const struct job *j, unsigned i, struct job_args *a)
+ *        the model's geometry as commands, item i = 0, 1, ...: JOB_DUMP_LINE with the
+ *        command in *a (cmd, word, option, u, na, v[] as the job holds them and scale[]),
+ *        JOB_DUMP_SKIP, or JOB_DUMP_END; replayed in item order after SURFACE <m>, they
+ *        rebuild the geometry
  * The models' commands, defaults and needs (the header of each job_<m>.c):
  *   canal    CURVE, RADIUS (under every SURFACE); SURFACE CANAL keeps everything;
  *            ready with CURVE, RADIUS and LINES or CIRCLES
@@ -193,7 +237,8 @@ struct job_args {
 #define CP_MODEL(NAME, name, WITH, WORD)                                                           \
     int job_##name##_command(struct job *j, struct job_args *a);                                   \
     void job_##name##_defaults(union path_geom *g);                                                \
-    int job_##name##_ready(const struct job *j);
+    int job_##name##_ready(const struct job *j);                                                   \
+    int job_##name##_dump(const struct job *j, unsigned i, struct job_args *a);
 #include "models.def"
 #undef CP_MODEL
 
@@ -203,15 +248,42 @@ void job_init(struct job *j);
 
 /* Apply one command line (trimmed, no terminator). Returns a wire status
  * (CP_ST_OK or an error; the job is unchanged on error), or JOB_NOT_MINE (also for
- * RUN and RESUME, the protocol's commands). */
+ * RUN, RESUME and $J, the protocol's commands). */
 int job_command(struct job *j, const char *line, size_t len);
 
 /* job_command for the protocol: the same, except that RUN alone on its line (RUN with
  * anything after it is JOB_NOT_MINE) and RESUME k return JOB_RUN with *first = 0 or k
- * (the job is unchanged). RESUME checks as the other commands: error:3 unless exactly
+ * (the job is unchanged), and $J alone on its line JOB_DUMP (the protocol prints
+ * job_dump's lines). On an error it sets j->cause_* (the failing token and limit, when
+ * known) for the reply; every other line clears them. RESUME checks as the other commands: error:3 unless exactly
  * one argument, error:4 if k is not an unsigned decimal number, error:21 above
  * 2^32 - 1 (proto.c checks k against the run's point count). */
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first);
+
+/* The job as command lines ($J), item i = 0, 1, ... (fixed order: CURVE, RADIUS, TOOL,
+ * LINES or CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE, then the model's
+ * job_<m>_dump items): JOB_DUMP_LINE with the command in *a, JOB_DUMP_SKIP (not set: the
+ * default), JOB_DUMP_END. Replayed in order after JOB CLEAR they rebuild the job
+ * (tests: dump, clear, replay, dump again: identical). */
+int job_dump(const struct job *j, unsigned i, struct job_args *a);
+
+/* The keyword of command c, the text of word w (commands.def: upper case; "" if none). */
+const char *job_keyword(enum job_cmd c);
+const char *job_word_text(enum job_word w);
+
+/* The word (option 0) or option word (option 1) of command c whose VALUE is value (the
+ * first such row), JOB_NO_WORD if none. For the dump hooks. */
+enum job_word job_word_of(enum job_cmd c, unsigned value, unsigned option);
+
+/* *a afresh for a dumped command c with word w (JOB_NO_WORD: none): no option, u = 0,
+ * na = the word's numbers (0 without a word), v[] 0, every scale JOB_SCALE_ONE. */
+void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w);
+
+/* The enum job_shape of command c (commands.def's SHAPE). */
+unsigned job_shape_of(enum job_cmd c);
+
+/* The canal's dump items (job_canal_dump, under every SURFACE): CURVE, RADIUS. */
+#define JOB_CANAL_ITEMS 2u
 
 /* CP_ST_OK if the job has everything its SURFACE needs, else CP_ST_NO_JOB. */
 int job_ready(const struct job *j);

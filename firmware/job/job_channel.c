@@ -39,15 +39,19 @@ static int channel_store(struct job *j, const struct channel_section *s, unsigne
 }
 
 /* SECTION a b n cx cy cz psi theta phi: a new section. */
-static int channel_section(struct job *j, const cp_real *v)
+static int channel_section(struct job *j, struct job_args *a)
 {
+    const cp_real *v = a->v;
     struct channel_section s;
     unsigned i;
     if (j->geom.channel.count >= CP_MAX_SECTIONS) {
+        a->limit = "SECTIONS CLEAR";
         return CP_ST_TOO_MANY;
     }
     for (i = 6u; i < 9u; i++) { /* the angles */
         if (cp_fabs(v[i]) > CP_R(360.0)) {
+            a->bad = (uint8_t)(JOB_ARG_V + i);
+            a->limit = "|angle| <= 360";
             return CP_ST_OUT_OF_RANGE;
         }
     }
@@ -63,11 +67,13 @@ static int channel_section(struct job *j, const cp_real *v)
 }
 
 /* AXES x1 x2 x3 z1 z2 z3: the last section's rows x and z. */
-static int channel_axes(struct job *j, const cp_real *v)
+static int channel_axes(struct job *j, struct job_args *a)
 {
+    const cp_real *v = a->v;
     const struct channel_cfg *g = &j->geom.channel;
     struct channel_section s;
     if (g->count == 0u) {
+        a->limit = "SECTION first";
         return CP_ST_TOO_FEW; /* AXES needs a SECTION to apply to */
     }
     s = g->s[g->count - 1u];
@@ -84,13 +90,47 @@ int job_channel_command(struct job *j, struct job_args *a)
 {
     switch (a->cmd) {
     case CHANNEL_CMD_SECTION:
-        return channel_section(j, a->v);
+        return channel_section(j, a);
     case CHANNEL_CMD_AXES:
-        return channel_axes(j, a->v);
+        return channel_axes(j, a);
     case CHANNEL_CMD_SECTIONS_CLEAR:
         j->geom.channel.count = 0u;
         return CP_ST_OK;
     default: /* not CHANNEL's (unreachable: job.c calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }
+}
+
+/* $J: per section s (items 2 s, 2 s + 1): SECTION a b n cx cy cz 0 0 0, then AXES with the
+ * rows the job holds (SECTION's angles only make rows; AXES sets them exactly). */
+int job_channel_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    const struct channel_cfg *g = &j->geom.channel;
+    const struct channel_section *s = &g->s[i / 2u];
+    if (i >= 2u * CP_MAX_SECTIONS) {
+        return JOB_DUMP_END;
+    }
+    if (i / 2u >= g->count) {
+        return JOB_DUMP_SKIP;
+    }
+    if (i % 2u == 0u) {
+        job_dump_args(a, CHANNEL_CMD_SECTION, JOB_NO_WORD);
+        a->na = 9u;
+        a->v[0] = s->a;
+        a->v[1] = s->b;
+        a->v[2] = s->n;
+        a->v[3] = s->c.x;
+        a->v[4] = s->c.y;
+        a->v[5] = s->c.z; /* the angles 0 */
+        return JOB_DUMP_LINE;
+    }
+    job_dump_args(a, CHANNEL_CMD_AXES, JOB_NO_WORD);
+    a->na = 6u;
+    a->v[0] = s->x.x;
+    a->v[1] = s->x.y;
+    a->v[2] = s->x.z;
+    a->v[3] = s->z.x;
+    a->v[4] = s->z.y;
+    a->v[5] = s->z.z;
+    return JOB_DUMP_LINE;
 }

@@ -12,7 +12,9 @@
  *   FORM RATIONAL|TRIG               section points (default RATIONAL)
  * Arity error:3, numbers error:4/5, keyword error:9 (job.c checks these: the keywords,
  * words and number counts are rows of commands.def), range error:6 (|a_i|, |b|, |c|, |x|, ref
- * <= 1e4 mm, |w| <= 23040 deg, ref != 0). The geometry itself is checked by RUN.
+ * <= 1e4 mm, |w| <= 23040 deg, ref != 0); RADII checks its function alone as gsr_init does
+ * (gsr_fn_check at u = k/256: error:28 f_N or f_B <= 0, error:29 f_t outside [0, 1],
+ * decreasing or f_t(1) <= f_t(0)). The rest of the geometry is checked by RUN.
  */
 #include "job.h"
 
@@ -90,8 +92,11 @@ int job_gsr_command(struct job *j, struct job_args *a)
     struct gsr_cfg *c = &j->geom.gsr;
     cp_real *v = a->v;
     unsigned k = a->value, na = a->na, i;
+    int err;
     for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
         if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
+            a->bad = (uint8_t)(JOB_ARG_V + i);
+            a->limit = i == GSR_W ? "|w| <= 23040" : "|x| <= 1e4";
             return CP_ST_OUT_OF_RANGE;
         }
     }
@@ -103,6 +108,13 @@ int job_gsr_command(struct job *j, struct job_args *a)
         gsr_center(c, a->word, k, v, na);
         return CP_ST_OK;
     case GSR_CMD_RADII: /* k: f_N, f_B, f_t (which has a default) */
+        err = gsr_fn_check(v, k); /* gsr_init's checks of the function alone */
+        if (err != CP_OK) {
+            a->limit = err == CP_ERR_SECTION    ? "f > 0 at u = k/256"
+                       : err == CP_ERR_FT_RANGE ? "0 <= f_t <= 1, increasing"
+                                                : NULL;
+            return cp_status_of(err);
+        }
         for (i = 0; i < GSR_FN; i++) {
             c->r[k][i] = v[i];
         }
@@ -115,6 +127,7 @@ int job_gsr_command(struct job *j, struct job_args *a)
     case GSR_CMD_FRAME: /* k: enum gsr_frame_kind; N0 and RMF with their reference */
         if (na != 0u) {
             if (!(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] > CP_R(0.0))) {
+                a->limit = "x y z != 0 0 0";
                 return CP_ST_OUT_OF_RANGE;
             }
             c->ref.x = v[0];
@@ -130,4 +143,69 @@ int job_gsr_command(struct job *j, struct job_args *a)
     default: /* not GSR's (unreachable: job.c calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }
+}
+
+/* One function fn (GSR_FN numbers, w in radians) as the numbers of a CENTER X|Y|Z or RADII
+ * command. */
+static void dump_fn(struct job_args *a, const cp_real *fn)
+{
+    unsigned i;
+    a->na = GSR_FN;
+    for (i = 0; i < GSR_FN; i++) {
+        a->v[i] = fn[i];
+    }
+    a->scale[GSR_W] = JOB_SCALE_DEG;
+}
+
+/* $J items: 0..3 CENTER P<i> (a Bezier centre's points given), 4..6 CENTER X|Y|Z (a
+ * complete polynomial centre), 7, 8 RADII N, B (given), 9 RADII T (not f_t(u) = u),
+ * 10 FRAME N0 ref (a reference kept under FIXED or FRENET), 11 FRAME, 12 FORM TRIG. */
+static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a)
+{
+    static const uint8_t set_of[3] = {SET_RADII_N, SET_RADII_B, 0u};
+    unsigned k;
+    int ref = c->ref.x != CP_R(0.0) || c->ref.y != CP_R(0.0) || c->ref.z != CP_R(0.0);
+    if (i < 4u) { /* CENTER P<i> x y z */
+        job_dump_args(a, GSR_CMD_CENTER, (enum job_word)(JOB_WORD_CENTER_P0 + i));
+        for (k = 0; k < 3u; k++) {
+            a->v[k] = c->c[k][i];
+        }
+        return c->centre == GSR_CENTRE_BEZIER && (c->set & (1u << i)) != 0u;
+    }
+    if (i < 7u) { /* CENTER X|Y|Z */
+        job_dump_args(a, GSR_CMD_CENTER, job_word_of(GSR_CMD_CENTER, i - 4u, 0u));
+        dump_fn(a, c->c[i - 4u]);
+        return c->centre == GSR_CENTRE_POLY && (c->set & SET_CENTER) != 0u;
+    }
+    if (i < 10u) { /* RADII N|B|T */
+        job_dump_args(a, GSR_CMD_RADII, job_word_of(GSR_CMD_RADII, i - 7u, 0u));
+        dump_fn(a, c->r[i - 7u]);
+        if (i == 9u) { /* f_t(u) = u is the default */
+            k = 0;
+            while (k < GSR_FN && c->r[2][k] == (k == 1u ? CP_R(1.0) : CP_R(0.0))) {
+                k++;
+            }
+            return k < GSR_FN;
+        }
+        return (c->set & set_of[i - 7u]) != 0u;
+    }
+    if (i < 12u) { /* FRAME [N0 ref], FRAME */
+        unsigned f = i == 10u ? GSR_FRAME_N0 : c->frame;
+        job_dump_args(a, GSR_CMD_FRAME, job_word_of(GSR_CMD_FRAME, f, 0u));
+        a->v[0] = c->ref.x;
+        a->v[1] = c->ref.y;
+        a->v[2] = c->ref.z;
+        return (c->set & SET_FRAME) != 0u &&
+               (i == 11u || (ref && c->frame != GSR_FRAME_N0 && c->frame != GSR_FRAME_RMF));
+    }
+    job_dump_args(a, GSR_CMD_FORM, job_word_of(GSR_CMD_FORM, c->section, 0u));
+    return c->section != GSR_SECTION_RATIONAL;
+}
+
+int job_gsr_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    if (i > 12u) {
+        return JOB_DUMP_END;
+    }
+    return gsr_dump_item(&j->geom.gsr, i, a) ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
 }

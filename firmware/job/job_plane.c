@@ -34,3 +34,16 @@ int job_plane_command(struct job *j, struct job_args *a)
         return CP_ST_UNKNOWN_CMD;
     }
 }
+
+/* $J: item 0 STRIP len width (when set). */
+int job_plane_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    if (i > 0u) {
+        return JOB_DUMP_END;
+    }
+    job_dump_args(a, PLANE_CMD_STRIP, JOB_NO_WORD);
+    a->na = 2u;
+    a->v[0] = j->geom.plane.len;
+    a->v[1] = j->geom.plane.width;
+    return j->geom.plane.len > CP_R(0.0) ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
+}

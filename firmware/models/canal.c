@@ -167,36 +167,34 @@ static unsigned first_angle(uint8_t curve)
     return (curve == CANAL_ARC || curve == CANAL_ELLIPSE) ? curve_nparams[curve] - 2u : 8u;
 }
 
-/* canal_init, step 1: copy the used parameters into c (the unused ones 0) and check them,
- * curve then radius law: every used one finite (CP_ERR_NONFINITE, which wins over a range
- * error anywhere), then in range (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, the angles of an
- * ARC/ELLIPSE |v| <= 4 pi, the k of a COS law |k| <= CANAL_K_MAX. */
-static int copy_params(struct canal *c, const struct canal_cfg *cfg)
+/* Copy the n used parameters v[0..n) into out[0..cnt) (the unused ones 0) and check them:
+ * every used one finite (CP_ERR_NONFINITE, which wins over a range error), then in range
+ * (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, from index `special` on |v| <= smax. */
+static int copy_params(cp_real *out, unsigned cnt, const cp_real *v, unsigned n, unsigned special,
+                       cp_real smax)
 {
-    unsigned nc = curve_nparams[cfg->curve], nr = radius_nparams[cfg->radius];
-    unsigned na = first_angle(cfg->curve), i;
+    unsigned i;
     int err = CP_OK;
-    for (i = 0; i < 8u; i++) {
-        cp_real v = i < nc ? cfg->cp[i] : CP_R(0.0);
-        c->cp[i] = v;
-        if (!cp_finite(v)) {
+    for (i = 0; i < cnt; i++) {
+        cp_real x = i < n ? v[i] : CP_R(0.0);
+        out[i] = x;
+        if (!cp_finite(x)) {
             return CP_ERR_NONFINITE;
         }
-        if (cp_fabs(v) > (i >= na ? CP_R(2.0) * CP_TWO_PI : CANAL_COORD_MAX)) {
-            err = CP_ERR_RANGE;
-        }
-    }
-    for (i = 0; i < 4u; i++) {
-        cp_real v = i < nr ? cfg->rp[i] : CP_R(0.0);
-        c->rp[i] = v;
-        if (!cp_finite(v)) {
-            return CP_ERR_NONFINITE;
-        }
-        if (cp_fabs(v) > (i == 2u && cfg->radius == CANAL_R_COS ? CANAL_K_MAX : CANAL_COORD_MAX)) {
+        if (cp_fabs(x) > (i >= special ? smax : CANAL_COORD_MAX)) {
             err = CP_ERR_RANGE;
         }
     }
     return err;
+}
+
+/* The radius law's parameters into c->rp (copy_params): |v| <= CANAL_COORD_MAX, the k of a
+ * COS law |k| <= CANAL_K_MAX. canal_radius_check and canal_init. */
+static int law_params(struct canal *c, const struct canal_cfg *cfg)
+{
+    c->radius = cfg->radius;
+    return copy_params(c->rp, 4u, cfg->rp, radius_nparams[cfg->radius],
+                       cfg->radius == CANAL_R_COS ? 2u : 4u, CANAL_K_MAX);
 }
 
 /* canal_init, step 2: the parameter interval [t0, t1] of the curve (and dir), its least
@@ -254,16 +252,16 @@ static int curve_interval(struct canal *c, cp_real *size)
     return c->t1 > c->t0 ? CP_OK : CP_ERR_EMPTY;
 }
 
-int canal_init(struct canal *c, const struct canal_cfg *cfg)
+/* canal_curve_check and canal_init, the curve alone: its parameters into c (copy_params:
+ * |v| <= CANAL_COORD_MAX, the angles of an ARC/ELLIPSE |v| <= 4 pi), its interval
+ * (curve_interval), least speed and the degeneracy test. c->radius and c->rp must be
+ * set (a BEZIER's speed is read from the jet, which evaluates R too). */
+static int curve_setup(struct canal *c, const struct canal_cfg *cfg)
 {
     cp_real size = CP_R(0.0);
-    int err;
-    if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
-        return CP_ERR_INVAL;
-    }
-    err = copy_params(c, cfg);
+    int err = copy_params(c->cp, 8u, cfg->cp, curve_nparams[cfg->curve], first_angle(cfg->curve),
+                          CP_R(2.0) * CP_TWO_PI);
     c->curve = cfg->curve;
-    c->radius = cfg->radius;
     c->dir = 1;
     if (err == CP_OK) {
         err = curve_interval(c, &size);
@@ -275,6 +273,54 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     c->kappa_const = (uint8_t)(c->curve == CANAL_ARC || c->curve == CANAL_LINE);
     c->kappa_c = c->curve == CANAL_ARC ? (cp_real)c->dir / c->cp[2] : CP_R(0.0);
     c->k_int = 0;
+    c->dth = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? (cp_real)c->dir : CP_TWO_PI;
+    if (c->curve == CANAL_BEZIER) {
+        c->cmin = bezier_min_speed(c);
+    }
+    if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
+        return CP_ERR_DEGENERATE;
+    }
+    return CP_OK;
+}
+
+/* (not inlined: its struct canal stays out of the protocol's line handler frame) */
+CP_NOINLINE int canal_curve_check(const struct canal_cfg *cfg)
+{
+    struct canal c;
+    unsigned i;
+    if (cfg == NULL || cfg->curve > CANAL_BEZIER) {
+        return CP_ERR_INVAL;
+    }
+    c.radius = CANAL_R_CONST; /* R = 1: read by a BEZIER's jet, not by the checks */
+    for (i = 0; i < 4u; i++) {
+        c.rp[i] = i == 0u ? CP_R(1.0) : CP_R(0.0);
+    }
+    return curve_setup(&c, cfg);
+}
+
+int canal_radius_check(const struct canal_cfg *cfg)
+{
+    struct canal c;
+    if (cfg == NULL || cfg->radius > CANAL_R_CUBIC) {
+        return CP_ERR_INVAL;
+    }
+    return law_params(&c, cfg);
+}
+
+int canal_init(struct canal *c, const struct canal_cfg *cfg)
+{
+    int law, err;
+    if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
+        return CP_ERR_INVAL;
+    }
+    law = law_params(c, cfg);
+    err = curve_setup(c, cfg);
+    if (law == CP_ERR_NONFINITE || (err == CP_OK && law != CP_OK)) {
+        return law; /* NONFINITE anywhere first, then the curve's checks, then the law's */
+    }
+    if (err != CP_OK) {
+        return err;
+    }
     if (c->radius == CANAL_R_COS && (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE)) {
         unsigned ki;
         for (ki = 1; ki <= 8u; ki++) {
@@ -282,13 +328,6 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
                 c->k_int = (uint8_t)ki;
             }
         }
-    }
-    c->dth = (c->curve == CANAL_ARC || c->curve == CANAL_ELLIPSE) ? (cp_real)c->dir : CP_TWO_PI;
-    if (c->curve == CANAL_BEZIER) {
-        c->cmin = bezier_min_speed(c);
-    }
-    if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
-        return CP_ERR_DEGENERATE;
     }
     {
         cp_real range[2];

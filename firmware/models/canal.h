@@ -118,8 +118,20 @@ struct canal_point {
  *   CP_ERR_DEGENERATE  C'(t) = 0 somewhere (LINE with P0 == P1, BEZIER with a cusp or
  *                      coincident control points): min |C'| <= 1e-5 of the curve's size
  *   CP_ERR_RADIUS      R(t) <= 0 somewhere on [t0, t1] (exact minimum, not sampled)
- * Returns CP_OK. */
+ * Order: NONFINITE anywhere first, then the curve's checks (canal_curve_check), then the
+ * law's (canal_radius_check), then RADIUS. Returns CP_OK. */
 CP_MUST_CHECK int canal_init(struct canal *c, const struct canal_cfg *cfg);
+
+/* The checks of canal_init that need the curve alone (cfg->curve, cp; the law is not
+ * read), the same code for the same fault: CP_ERR_INVAL (kind, NULL), NONFINITE, RANGE
+ * (|coordinate| > CANAL_COORD_MAX, an angle beyond 4 pi, sweep > 2 pi, r, A or B <= 0),
+ * EMPTY (a0 == a1), DEGENERATE. The protocol's CURVE calls it. Returns CP_OK. */
+CP_MUST_CHECK int canal_curve_check(const struct canal_cfg *cfg);
+
+/* The checks of canal_init that need the radius law alone (cfg->radius, rp): INVAL,
+ * NONFINITE, RANGE (|parameter| > CANAL_COORD_MAX, |k| > CANAL_K_MAX). R > 0 over the
+ * interval needs the curve: canal_init. The protocol's RADIUS calls it. Returns CP_OK. */
+CP_MUST_CHECK int canal_radius_check(const struct canal_cfg *cfg);
 
 /* The jet of C and R at t (any t; meaningful in [t0, t1]). Cannot fail. */
 void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);

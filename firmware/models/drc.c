@@ -175,6 +175,21 @@ static cp_real seg_b(const struct drc_scratch *w, uint32_t i)
     return (ONE - w->tp[i + 1u]) * w->phi[i + 1u];
 }
 
+int drc_point_check(const struct cp_vec3 *q, int planar)
+{
+    cp_real v[3];
+    uint32_t k;
+    v[0] = q->x;
+    v[1] = q->y;
+    v[2] = q->z;
+    for (k = 0; k < 3u; k++) {
+        if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
+            return cp_finite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
+        }
+    }
+    return planar && v[2] != ZERO ? CP_ERR_OFF_PLANE : CP_OK;
+}
+
 /* Validation and step 0 (A.3), in the order: count, per coordinate non-finite or range,
  * (planar != 0) off the plane, coincident chord, turning >= 90 deg. Fills len and the planar signed
  * turning phi_j = atan2((d_{j-1} x d_j).z, d_{j-1}.d_j) (0 when |cross| <= 1e-6 of the
@@ -198,18 +213,16 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
     for (i = 0; i < n; i++) {
         const struct cp_vec3 *q = &p[i * ps];
         cp_real v[3];
+        int err = drc_point_check(q, planar); /* the point alone (POINT checks it too) */
+        if (err != CP_OK) {
+            return err;
+        }
         v[0] = q->x;
         v[1] = q->y;
         v[2] = q->z;
         for (k = 0; k < 3u; k++) {
-            if (!(cp_fabs(v[k]) <= CANAL_COORD_MAX)) {
-                return cp_finite(v[k]) ? CP_ERR_RANGE : CP_ERR_NONFINITE;
-            }
             lo[k] = v[k] < lo[k] ? v[k] : lo[k];
             hi[k] = v[k] > hi[k] ? v[k] : hi[k];
-        }
-        if (planar && v[2] != ZERO) {
-            return CP_ERR_OFF_PLANE;
         }
     }
     for (k = 0; k < 3u; k++) {

@@ -270,6 +270,12 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
 CP_MUST_CHECK int drc_path_init(struct drc_path *it, const struct drc_cfg *g,
                                 const struct raster_cfg *raster);
 
+/* The checks of drc_path_init (and drc_tangents) that need one point alone, the same code
+ * for the same fault: per coordinate x, y, z CP_ERR_NONFINITE or CP_ERR_RANGE
+ * (|coordinate| > CANAL_COORD_MAX), then with planar != 0 (the stream's data)
+ * CP_ERR_OFF_PLANE for z != 0. The protocol's POINT calls it (planar). Returns CP_OK. */
+CP_MUST_CHECK int drc_point_check(const struct cp_vec3 *q, int planar);
+
 /* Points drc_path_next yields in all (n lines of steps + 1 points, n - 1 links of
  * link points); 0 until drc_path_init succeeded. */
 uint32_t drc_path_count(const struct drc_path *it);

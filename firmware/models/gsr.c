@@ -127,6 +127,14 @@ static cp_real rmf_phi(const struct gsr *g, cp_real t)
            x * x * ((CP_R(3.0) - CP_R(2.0) * x) * b[0] - o * b[1]);
 }
 
+/* 1 if a section function's value f (and derivative df) at a u fails C.3: f_N or f_B
+ * (i = 0, 1) f <= 0 (CP_ERR_SECTION), f_t (i = 2) outside [0, 1] or df < 0
+ * (CP_ERR_FT_RANGE). sec_eval and gsr_fn_check. */
+static int fn_bad(unsigned i, cp_real f, cp_real df)
+{
+    return i == 2u ? !(f >= CP_R(0.0) && f <= CP_R(1.0) && df >= CP_R(0.0)) : !(f > CP_R(0.0));
+}
+
 /* The section at u with every check of C.3 (the fold for the whole section: (k1 f_N)^2 +
  * (k2 f_B)^2 < 1). Returns the first failed check, CP_OK otherwise (the section is filled
  * either way). */
@@ -176,9 +184,9 @@ static int sec_eval(const struct gsr *g, cp_real u, struct gsr_sec *s)
     w = (s->k1 * s->fn) * (s->k1 * s->fn) + (s->k2 * s->fb) * (s->k2 * s->fb);
     if (g->frame == GSR_FRAME_FIXED && ty != CP_R(0.0)) {
         err = CP_ERR_OFF_PLANE;
-    } else if (!(f[0][2] >= CP_R(0.0) && f[0][2] <= CP_R(1.0) && f[1][2] >= CP_R(0.0))) {
+    } else if (fn_bad(2u, f[0][2], f[1][2])) {
         err = CP_ERR_FT_RANGE;
-    } else if (!(s->fn > CP_R(0.0) && s->fb > CP_R(0.0))) {
+    } else if (fn_bad(0u, s->fn, CP_R(0.0)) || fn_bad(1u, s->fb, CP_R(0.0))) {
         err = CP_ERR_SECTION;
     } else if (!(sp > GSR_EPS * g->d1)) {
         err = CP_ERR_DEGENERATE;
@@ -257,6 +265,31 @@ static int check_fns(const cp_real (*fn)[GSR_FN])
         for (k = 0; k < GSR_FN && err == CP_OK; k++) {
             err = check_num(fn[i][k], k == GSR_W ? GSR_W_MAX : GSR_COEF_MAX);
         }
+    }
+    return err;
+}
+
+int gsr_fn_check(const cp_real *fn, unsigned i)
+{
+    cp_real d[4u * 3u]; /* sfun's output (stride 3) */
+    cp_real f0 = CP_R(0.0);
+    uint32_t k;
+    int err = CP_OK;
+    if (fn == NULL || i > 2u) {
+        return CP_ERR_INVAL;
+    }
+    for (k = 0; k < GSR_FN && err == CP_OK; k++) { /* check_fns' order */
+        err = check_num(fn[k], k == GSR_W ? GSR_W_MAX : GSR_COEF_MAX);
+    }
+    for (k = 0; k <= GSR_SAMPLES && err == CP_OK; k++) { /* gsr_init's samples */
+        sfun(fn, (cp_real)k / (cp_real)GSR_SAMPLES, d);
+        if (fn_bad(i, d[0], d[3])) {
+            err = i == 2u ? CP_ERR_FT_RANGE : CP_ERR_SECTION;
+        }
+        f0 = k == 0u ? d[0] : f0;
+    }
+    if (err == CP_OK && i == 2u && !(d[0] > f0)) { /* f_t(1) > f_t(0) */
+        err = CP_ERR_FT_RANGE;
     }
     return err;
 }

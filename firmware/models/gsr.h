@@ -178,6 +178,13 @@ struct gsr_sec {
  * checks every streamed point and midpoint again). */
 CP_MUST_CHECK int gsr_init(struct gsr *g, const struct gsr_cfg *cfg);
 
+/* The checks of gsr_init that need one section function alone (fn: GSR_FN numbers, w in
+ * radians; i = 0, 1, 2: f_N, f_B, f_t), the same code for the same fault: CP_ERR_INVAL,
+ * NONFINITE, RANGE (|number| > GSR_COEF_MAX, |w| > GSR_W_MAX), and at gsr_init's samples
+ * u = k / GSR_SAMPLES: f_N, f_B <= 0 CP_ERR_SECTION; f_t outside [0, 1], f_t' < 0 or
+ * f_t(1) <= f_t(0) CP_ERR_FT_RANGE. The protocol's RADII calls it. Returns CP_OK. */
+CP_MUST_CHECK int gsr_fn_check(const cp_real *fn, unsigned i);
+
 /* The section at u in [0, 1] (after a successful gsr_init). */
 void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s);
 

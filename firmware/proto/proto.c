@@ -95,6 +95,49 @@ static void reply_status(struct proto *p, int code)
     tx_str(p, "\n");
 }
 
+/* Append s[0..n) to the tx buffer (at most the room left). */
+static void tx_mem(struct proto *p, const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n && p->tx_len < CP_TX_BUF; i++) {
+        p->tx[p->tx_len++] = (uint8_t)s[i];
+    }
+}
+
+/* The reply to a command line: reply_status, and for an error whose cause job_line named
+ * "error:<code> <text> (<keyword> <token>: <limit>)", the token as typed (its first
+ * PROTO_CAUSE_TOKEN_MAX chars) and the limit it broke, each part only when known. The
+ * line (trimmed: its keyword first) is still in p->line. */
+#define PROTO_CAUSE_TOKEN_MAX 24u
+static void reply_command(struct proto *p, int code)
+{
+    const struct job *j = &p->job;
+    size_t kw = 0;
+    if (code == CP_ST_OK || (j->cause_len == 0u && j->cause_limit == NULL)) {
+        reply_status(p, code);
+        return;
+    }
+    while (kw < p->line_len && kw < PARSE_KW_MAX && p->line[kw] != ' ') {
+        kw++;
+    }
+    tx_str(p, "error:");
+    tx_u32(p, (uint32_t)code);
+    tx_str(p, " ");
+    tx_str(p, cp_status_text(code));
+    tx_str(p, " (");
+    tx_mem(p, p->line, kw);
+    if (j->cause_len != 0u && (size_t)j->cause_st + j->cause_len <= p->line_len) {
+        tx_str(p, " ");
+        tx_mem(p, p->line + j->cause_st,
+               j->cause_len < PROTO_CAUSE_TOKEN_MAX ? j->cause_len : PROTO_CAUSE_TOKEN_MAX);
+    }
+    if (j->cause_limit != NULL) {
+        tx_str(p, ": ");
+        tx_str(p, j->cause_limit);
+    }
+    tx_str(p, ")\n");
+}
+
 /* "[VER:canalpath <fw> proto <n>]" and "[OPT:real=..,line=..,...,models=..]" */
 static void reply_info(struct proto *p)
 {
@@ -289,6 +332,48 @@ static void line_trim(struct proto *p)
     p->line_len = (uint16_t)(b - a);
 }
 
+/* $J: the next item of job_dump as "[JOB:<command line>]", or at the end "ok". One item
+ * per call (a line fits PROTO_REPLY_MAX: keyword, word, 9 numbers of at most 16 chars,
+ * option); the numbers by fmt_real, so the line reads back to the same job. */
+static void dump_step(struct proto *p)
+{
+    struct job_args a;
+    char line[PROTO_REPLY_MAX];
+    size_t pos = 0, cap = sizeof line - 3u; /* room for "]\n" and the NUL */
+    unsigned k, shape;
+    int r = job_dump(&p->job, (unsigned)p->dump - 1u, &a);
+    if (r == JOB_DUMP_END) {
+        p->dump = 0u;
+        reply_status(p, CP_ST_OK);
+        return;
+    }
+    p->dump++;
+    if (r != JOB_DUMP_LINE) {
+        return;
+    }
+    shape = job_shape_of(a.cmd);
+    (void)fmt_str(line, cap, &pos, "[JOB:");
+    (void)fmt_str(line, cap, &pos, job_keyword(a.cmd));
+    if (a.word != JOB_NO_WORD) {
+        (void)fmt_str(line, cap, &pos, " ");
+        (void)fmt_str(line, cap, &pos, job_word_text(a.word));
+    } else if (shape == JOB_ARGS_UINT_NUMBERS_OPTION || shape == JOB_ARGS_UINT_OR_WORD) {
+        (void)fmt_str(line, cap, &pos, " ");
+        (void)fmt_u32(line, cap, &pos, a.u);
+    }
+    for (k = 0; k < a.na && k < JOB_MAX_NUMBERS; k++) {
+        (void)fmt_str(line, cap, &pos, " ");
+        (void)fmt_real(line, cap, &pos, a.v[k], JOB_SCALE_FACTOR(a.scale[k]));
+    }
+    if (a.option != JOB_NO_WORD) {
+        (void)fmt_str(line, cap, &pos, " ");
+        (void)fmt_str(line, cap, &pos, job_word_text(a.option));
+    }
+    (void)fmt_str(line, sizeof line, &pos, "]\n");
+    line[pos] = '\0';
+    tx_str(p, line);
+}
+
 /* The commands that answer the version and limits line. */
 static const char *const info_words[2] = {"$I", "HELLO"};
 
@@ -329,13 +414,17 @@ static void exec_line(struct proto *p)
     }
     p->tail.open = 0; /* a text command: late frames of the last run are over */
     st = job_line(&p->job, p->line, p->line_len, &k);
+    if (st == JOB_DUMP) { /* $J: the lines, then ok (proto_poll: dump_step) */
+        p->dump = 1u;
+        return;
+    }
     if (st == JOB_RUN) { /* RUN or RESUME k: a run from point 0 or k ("ok" at its end) */
         st = run_start(p, k);
         if (st == CP_ST_OK) {
             return;
         }
     }
-    reply_status(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
+    reply_command(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
 }
 
 /* Real-time bytes act at once, outside the line assembly (grbl). */
@@ -487,11 +576,16 @@ int proto_poll(struct proto *p)
     if (p->rx_pos == p->rx_len && out_frames_tail_waiting(&p->tail)) {
         out_frames_tail_stalled(&p->tail, hal_uart_now_ms(p->uart));
     }
-    while (p->tail.replay > 0u && tx_room(p) >= PROTO_REPLY_MAX) { /* <= FRAME_MIN */
+    while (p->dump != 0u && tx_room(p) >= PROTO_REPLY_MAX) { /* $J: its lines first */
+        dump_step(p);
+        moved = 1;
+    }
+    while (p->dump == 0u && p->tail.replay > 0u &&
+           tx_room(p) >= PROTO_REPLY_MAX) { /* <= FRAME_MIN */
         feed(p, out_frames_tail_next(&p->tail), 1);
         moved = 1;
     }
-    while (p->tail.replay == 0u && p->rx_pos < p->rx_len &&
+    while (p->dump == 0u && p->tail.replay == 0u && p->rx_pos < p->rx_len &&
            tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
         feed(p, p->rx[p->rx_pos++], 0);
         moved = 1;

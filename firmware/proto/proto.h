@@ -81,6 +81,8 @@ struct proto {
     /* the run, whatever its format */
     uint8_t state;           /* enum proto_state */
     uint8_t fmt;             /* enum job_format of the current (or last) run */
+    uint16_t dump;           /* $J: the next job_dump item + 1; 0 when not dumping (while
+                                dumping no byte is consumed: the lines come out whole) */
     struct out_run run;      /* stream position, acknowledgements, peer clock */
     union {                  /* the state of the run's output format (fmt), set up by its
                               * start call; meaningless while state is PROTO_IDLE */
