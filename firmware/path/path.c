@@ -23,14 +23,14 @@ int path_has(unsigned kind)
 #define PATH_INIT_ROW(name)                                                                        \
     err = name##_path_init(&p->u.name, &geom->name, raster);                                       \
     if (err != CP_OK) {                                                                            \
-        p->u.name.head.count = 0;                                                                       \
+        p->u.name.head.count = 0;                                                                  \
         return err;                                                                                \
     }                                                                                              \
     p->info.count = name##_path_count(&p->u.name);                                                 \
-    p->info.n = p->u.name.head.n;                                                                       \
-    p->info.steps = p->u.name.head.steps;                                                               \
-    p->info.link = p->u.name.head.link;                                                                 \
-    p->info.mode = p->u.name.head.mode;                                                                 \
+    p->info.n = p->u.name.head.n;                                                                  \
+    p->info.steps = p->u.name.head.steps;                                                          \
+    p->info.link = p->u.name.head.link;                                                            \
+    p->info.mode = p->u.name.head.mode;                                                            \
     return CP_OK;
 
 int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
