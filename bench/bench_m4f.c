@@ -81,7 +81,7 @@ static struct proto engine;
 
 static void proto_fresh(const char *input)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     hal_mem_init(&mem, &mem_uart);
     cfg.uart = &mem_uart;
     bench_sink = proto_init(&engine, &cfg);

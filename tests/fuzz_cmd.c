@@ -658,7 +658,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     size_t a = 0;
     int i;
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     hal_mem_init(&mem, &uart);
     mem.tick_ms = 1;
     cfg.uart = &uart;

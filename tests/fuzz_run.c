@@ -291,7 +291,7 @@ static void command(const char *cmd)
 /* The engine after the set-up of job j, and the expected points of the job. */
 static void job_setup(unsigned j)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     struct canal_path it;
     struct raster_pt pt;
     uint32_t k;

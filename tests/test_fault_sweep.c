@@ -83,7 +83,7 @@ static const char *const job[] = {"CURVE LINE 0 0 20 5", "RADIUS LINEAR 3 5", "L
  * injected hang-up, 0 = failure (wrong/missing/duplicated point or a hang). */
 static int session(enum fault f, int dir, uint32_t at, uint32_t *bytes_out)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     uint32_t out_idx = 0, in_idx = 0;
     size_t scan = 0;
     int i, r = 0;

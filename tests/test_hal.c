@@ -239,7 +239,7 @@ int test_hal_fault_rx(void)
 /* A fresh engine on hm (through hf, fault disarmed). */
 static int session_start(struct hal_uart *inner, struct hal_uart *u)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     hal_mem_init(&hm, inner);
     hal_fault_init(&hf, u, inner);
     cfg.uart = u;

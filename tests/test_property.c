@@ -87,7 +87,7 @@ static void put_num(char *buf, size_t cap, unsigned *s, double v)
 /* ------------------------------------------------------------ statistics */
 
 static unsigned st_err[20];     /* canal_path_init rejections by -enum cp_err */
-static unsigned st_cmd[24];     /* job command rejections by wire code */
+static unsigned st_cmd[CP_ST_END_];     /* job command rejections by wire code */
 static unsigned st_ok, st_points, st_fam2, st_trunc;
 static double st_max2, st_max1, st_maxn;
 
@@ -404,7 +404,7 @@ int test_property_random_jobs(void)
               st_err[10], st_err[11], st_err[2], st_err[1]);
     {
         unsigned q, any = 0;
-        for (q = 1; q < 24u; q++) {
+        for (q = 1; q < (unsigned)CP_ST_END_; q++) {
             if (st_cmd[q]) {
                 TEST_NOTE("rejected by a job command: error:%u (%s) x%u\n", q, cp_status_text((int)q),
                           st_cmd[q]);
@@ -464,7 +464,7 @@ static const char *const valid_cmds[] = {
     "CURVE BEZIER 0 0 10 15 20 -15 30 0", "RADIUS CONST 2",    "RADIUS LINEAR 2 6",
     "RADIUS COS 5.5 10.5 2",        "RADIUS CUBIC 3 5 2 4",    "TOOL BALL 1 TIP",
     "LINES 3 -25 10",               "CIRCLES 4 -20 30 PATCH",  "STEPS 40",
-    "TOL 5",                        "FEED 600",                "RXBUF 128",
+    "TOL 5",                        "SAFE 25",                 "RXBUF 128",
 };
 #define NVALID (sizeof valid_cmds / sizeof valid_cmds[0])
 
@@ -574,7 +574,8 @@ static int make_invalid(unsigned *s, char *out, size_t cap, size_t *len)
                                           "STEPS 0", "TOL 0", "TOL 20000", "FEED -5",
                                           "RXBUF 8", "RXBUF 5000", "TOOL BALL -1", "TOOL BALL 0",
                                           "LINES 99999 -10 10", "STEPS 999999", "CIRCLES 3 1 1",
-                                          "FEED 2e6", "TOOL BALL 20000"};
+                                          "FEED 2e6", "TOOL BALL 20000", "SAFE 2000",
+                                          "SPINDLE 1e6", "FEED 600 0"};
         strcpy(out, oor[irand(s, sizeof oor / sizeof oor[0])]);
         *len = strlen(out);
     }
@@ -584,9 +585,9 @@ static int make_invalid(unsigned *s, char *out, size_t cap, size_t *len)
 int test_property_random_invalid(void)
 {
     static char line[400];
-    static unsigned by_code[24], by_cat[8];
+    static unsigned by_code[CP_ST_END_], by_cat[8];
     unsigned seed = 0xbadc0deu, i;
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     char first[160];
     hal_mem_init(&pm, &pu);
     pm.tick_ms = 1;
@@ -627,7 +628,7 @@ int test_property_random_invalid(void)
         size_t pos = 0;
         unsigned q;
         buf[0] = '\0';
-        for (q = 1; q < 24u; q++) {
+        for (q = 1; q < (unsigned)CP_ST_END_; q++) {
             if (by_code[q]) {
                 pos += (size_t)snprintf(buf + pos, sizeof buf - pos, " %u:%u", q, by_code[q]);
             }
@@ -650,8 +651,10 @@ int test_property_repro_f3(void);
 int test_property_repro_f3(void)
 {
     static const char *const job[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",
-                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 96", "RUN"};
-    struct proto_cfg cfg;
+                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 96",
+                                      "FEED 600",              "SAFE 20",
+                                      "RUN"};
+    struct proto_cfg cfg = {0};
     unsigned i;
     hal_mem_init(&pm, &pu);
     pm.tick_ms = 1;
@@ -664,8 +667,8 @@ int test_property_repro_f3(void)
     for (i = 0; i < 20u; i++) {
         (void)proto_poll(&pp);
     }
-    /* preamble (12 bytes) and three G1 lines (27 bytes each) in flight: the fourth does
-     * not fit RXBUF 96 and waits */
+    /* the program's first lines (the modes 20 bytes, G0 Z 12, G0 X Y 22, the plunge 36)
+     * in flight: the first cut line does not fit RXBUF 96 and waits */
     pm.out_len = 0;
     (void)hal_mem_feed_str(&pm, "?");
     (void)proto_poll(&pp); /* report staged, the G1 line built behind it */

@@ -209,7 +209,7 @@ int test_proto_info(void)
     static struct hal_mem m;
     struct hal_uart u;
     struct proto p;
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     static char want[512];
     char line[CP_LINE_MAX + 40];
     size_t i;
@@ -279,16 +279,36 @@ static int host_frame(struct out_frames *f, struct out_run *run, uint8_t seq, ui
  * FRAMES window's ACK/NAK arithmetic and the late-frame tail. */
 int test_out_modules(void)
 {
+    /* the answers by dialect (machine.h): what grbl and Marlin really send */
     static const struct {
+        unsigned m;
         const char *line;
-        enum out_gcode_answer kind;
-        size_t arg;
+        enum machine_reply kind;
+        uint32_t num;
     } ans[] = {
-        {"ok", OUT_GCODE_OK, 2u},          {"okay", OUT_GCODE_NOT_ANSWER, 0u},
-        {"error:5", OUT_GCODE_ERROR, 6u},  {"ALARM:1", OUT_GCODE_ALARM, 6u},
-        {"Error:x", OUT_GCODE_MARLIN_ERR, 6u}, {"rs 12", OUT_GCODE_RS, 3u},
-        {"Resend: 7", OUT_GCODE_RESEND, 7u}, {"o", OUT_GCODE_NOT_ANSWER, 0u},
-        {"", OUT_GCODE_NOT_ANSWER, 0u},    {"Resend", OUT_GCODE_NOT_ANSWER, 0u},
+        {JOB_MACHINE_GRBL, "ok", MACHINE_OK, 0u},
+        {JOB_MACHINE_GRBL, "okay", MACHINE_OTHER, 0u},
+        {JOB_MACHINE_GRBL, "ok N2 P15 B3", MACHINE_OTHER, 0u}, /* not grbl's */
+        {JOB_MACHINE_MARLIN, "ok N2 P15 B3", MACHINE_OK, 0u},   /* ADVANCED_OK */
+        {JOB_MACHINE_MARLIN, "ok T:21.3 /0.0", MACHINE_OK, 0u},
+        {JOB_MACHINE_GRBL, "error:22", MACHINE_ERROR, 0u},
+        {JOB_MACHINE_GRBL, "ALARM:9", MACHINE_ALARM, 0u},
+        {JOB_MACHINE_GRBL, "<Run|MPos:1.000,2.000,0.000|FS:500,0>", MACHINE_ALIVE, 0u},
+        {JOB_MACHINE_GRBL, "[MSG:Caution: Unlocked]", MACHINE_OTHER, 0u},
+        {JOB_MACHINE_GRBL, "Grbl 1.1h ['$' for help]", MACHINE_RESET, 0u},
+        {JOB_MACHINE_MARLIN, "echo:busy: processing", MACHINE_ALIVE, 0u},
+        {JOB_MACHINE_MARLIN, "echo:Unknown command: \"M999?\"", MACHINE_OTHER, 0u},
+        {JOB_MACHINE_MARLIN, "Error:checksum mismatch, Last Line: 4", MACHINE_RETRY, 0u},
+        {JOB_MACHINE_MARLIN, "Error:Printer halted. kill() called!", MACHINE_ERROR, 0u},
+        {JOB_MACHINE_MARLIN, "Resend: 7", MACHINE_RESEND, 7u},
+        {JOB_MACHINE_MARLIN, "Resend:8", MACHINE_RESEND, 8u},
+        {JOB_MACHINE_MARLIN, "rs N12", MACHINE_RESEND, 12u},
+        {JOB_MACHINE_MARLIN, "Resend: x", MACHINE_RESEND, UINT32_MAX},
+        {JOB_MACHINE_MARLIN, "start", MACHINE_RESET, 0u},
+        {JOB_MACHINE_MARLIN, "!!", MACHINE_ALARM, 0u},
+        {JOB_MACHINE_GENERIC, "o", MACHINE_OTHER, 0u},
+        {JOB_MACHINE_GENERIC, "", MACHINE_OTHER, 0u},
+        {JOB_MACHINE_GENERIC, "Resend", MACHINE_OTHER, 0u},
     };
     static struct job job;
     struct out_gcode g;
@@ -296,14 +316,15 @@ int test_out_modules(void)
     struct out_frames_tail t;
     struct out_run run;
     uint8_t late[FRAME_MIN];
-    size_t i, arg;
+    size_t i;
+    uint32_t num;
     int n;
     for (i = 0; i < sizeof ans / sizeof ans[0]; i++) {
-        CHECK_EQ_INT(out_gcode_answer_kind(ans[i].line, strlen(ans[i].line), &arg), ans[i].kind);
-        CHECK_EQ_INT(arg, ans[i].arg);
+        CHECK_EQ_INT(machine_reply(ans[i].m, ans[i].line, strlen(ans[i].line), &num), ans[i].kind);
+        CHECK(num == ans[i].num);
     }
-    /* with checksums: an error waits for its Resend, a Resend of a line sent rewinds
-     * (oks are then ignored until the resync), one never sent stops the run */
+    /* with checksums: a line-number error waits for its Resend, a Resend of a line sent
+     * rewinds (oks are then ignored until the resync), one never sent stops the run */
     job_init(&job);
     job.checksum = 1;
     memset(&g, 0, sizeof g);
@@ -313,18 +334,24 @@ int test_out_modules(void)
     g.ring[0] = 20;
     g.ring[1] = 20;
     run.next = 5;
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ERROR, "", 0u, 10u), OUT_GOING);
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_RESEND, " 3", 2u, 11u), OUT_GOING);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_RETRY, 0u, 10u), OUT_GOING);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_RESEND, 3u, 11u), OUT_GOING);
     CHECK(run.next == 3u && g.resync == 1u && run.t_last == 11u);
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_OK, "", 0u, 12u), OUT_GOING);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_OK, 0u, 12u), OUT_GOING);
     CHECK(g.ring_n == 2u && run.acked == 0u);
     g.resync = 0;
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_OK, "", 0u, 13u), OUT_GOING);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_OK, 0u, 13u), OUT_GOING);
     CHECK(g.ring_n == 1u && g.inflight == 20u && run.acked == 1u);
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_RS, "3", 1u, 14u), CP_ST_PEER_ERROR);
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ALARM, "", 0u, 15u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_ALIVE, 0u, 14u), OUT_GOING);
+    CHECK(g.ring_n == 1u && run.t_last == 14u);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_OTHER, 0u, 15u), OUT_GOING);
+    CHECK(run.t_last == 14u); /* chatter is no sign of progress */
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_RESEND, 3u, 16u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_ALARM, 0u, 17u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_RESET, 0u, 18u), CP_ST_MACHINE_RESET);
     job.checksum = 0;
-    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, OUT_GCODE_ERROR, "", 0u, 16u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_ERROR, 0u, 19u), CP_ST_PEER_ERROR);
+    CHECK_EQ_INT(out_gcode_answer(&g, &run, &job, MACHINE_RETRY, 0u, 20u), CP_ST_PEER_ERROR);
 
     /* FRAMES: a cumulative ACK moves acked, an ACK beyond next is ignored, a NAK rewinds */
     memset(&f, 0, sizeof f);

@@ -28,7 +28,7 @@ static int resends; /* Resend: requests the machine model sent */
 
 static void rig_init(void)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     memset(&rig, 0, sizeof rig);
     hal_mem_init(&rig.m, &rig.u);
     rig.m.tick_ms = 1;
@@ -102,7 +102,8 @@ static int expect_code(const char *cmd, int code)
 }
 
 static const char *const paper_job[] = {
-    "CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 3 -25 10", "STEPS 40", NULL};
+    "CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 3 -25 10", "STEPS 40",
+    "FEED 600 100", "SAFE 20", NULL};
 
 static int load(const char *const *cmds)
 {
@@ -186,7 +187,7 @@ static int machine_gcode(int rxbuf, int lag, uint32_t first, uint32_t *points, i
             expect_n++;
             g = strchr(l, ' ') + 1;
             *(char *)strchr(g, '*') = '\0';
-        } else if (l[0] == 'G') {
+        } else if (l[0] == 'G' || l[0] == 'M') {
             pend_len[pend++] = strlen(l) + 1;
             inbuf += (int)strlen(l) + 1;
             CHECK(inbuf <= rxbuf); /* character counting honoured */
@@ -199,8 +200,8 @@ static int machine_gcode(int rxbuf, int lag, uint32_t first, uint32_t *points, i
             printf("  unexpected line \"%s\"\n", l);
             return __LINE__;
         }
-        if (strncmp(g, "G21", 3) == 0) {
-            preamble++;
+        if (strncmp(g, "G1 ", 3) != 0) {
+            preamble++; /* the program around the points (test_stream_program checks it) */
         } else {
             long q[3];
             CHECK(strncmp(g, "G1 X", 4) == 0);
@@ -229,7 +230,7 @@ static int machine_gcode(int rxbuf, int lag, uint32_t first, uint32_t *points, i
         }
     }
     CHECK(done);
-    CHECK_EQ_INT(preamble, 1);
+    CHECK_EQ_INT(preamble, rig.p.run.lead + rig.p.out.gcode.ntrail - rig.p.job.checksum);
     *points = (uint32_t)g1;
     return 0;
 }
@@ -395,7 +396,14 @@ static const struct bad_vec bad[] = {
     {"FORMAT XML", CP_ST_BAD_KEYWORD},
     {"RXBUF 8", CP_ST_OUT_OF_RANGE},
     {"RXBUF 95", CP_ST_OUT_OF_RANGE}, /* smaller than the longest stream line */
-    {"FEED 0.04", CP_ST_OUT_OF_RANGE}, /* would print F0.0 */
+    {"FEED 0.0009", CP_ST_OUT_OF_RANGE},
+    {"FEED 600 0", CP_ST_OUT_OF_RANGE}, /* a plunge feed of 0 */
+    {"FEED 600 100 50 7", CP_ST_BAD_ARITY},
+    {"SAFE 1000.1", CP_ST_OUT_OF_RANGE},
+    {"SPINDLE -1", CP_ST_OUT_OF_RANGE},
+    {"WCS G60", CP_ST_BAD_KEYWORD},
+    {"MACHINE HAAS", CP_ST_BAD_KEYWORD},
+    {"LINK USB", CP_ST_BAD_KEYWORD},
     {"CHECKSUM MAYBE", CP_ST_BAD_KEYWORD},
     {"PLACE 1 2", CP_ST_BAD_ARITY},
     {"PLACE 1 2 3 4 5", CP_ST_BAD_ARITY},
@@ -414,16 +422,23 @@ static const struct bad_vec bad[] = {
     {"CURVE LINE 1 2 3 4 5 6 7 8 9 10 11 12", CP_ST_BAD_ARITY},
 };
 
-/* Jobs that parse but fail validation at RUN, each with its code. */
+/* Jobs that parse but fail validation at RUN, each with its code (after the program's
+ * FEED 600 and SAFE 20). */
+#define GOOD_CANAL "CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 2 -20 5"
 static const struct {
-    const char *cmds[5];
+    const char *cmds[10];
     int code;
 } bad_jobs[] = {
-    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5 2 2", "LINES 1 0 0", NULL, NULL}, CP_ST_RADIUS},
-    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 5 -20 60", NULL, NULL}, CP_ST_CUSP},
-    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 2 -20 5", "TOOL BALL 6", NULL},
-     CP_ST_TOOL},
+    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5 2 2", "LINES 1 0 0", NULL}, CP_ST_RADIUS},
+    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 5 -20 60", NULL}, CP_ST_CUSP},
+    {{GOOD_CANAL, "TOOL BALL 6", NULL}, CP_ST_TOOL},
     {{"CURVE ARC 0 0 3 0 360", "RADIUS CONST 2", "CIRCLES 2 0 90", "TOL 0.01", NULL}, CP_ST_TOL},
+    /* the program: a feed and a safe height needed, what the dialect has, a link that is there */
+    {{GOOD_CANAL, "FEED 0", NULL}, CP_ST_NO_FEED},
+    {{GOOD_CANAL, "JOB CLEAR", GOOD_CANAL, "FEED 600", NULL}, CP_ST_NO_SAFE},
+    {{GOOD_CANAL, "MACHINE GRBL", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
+    {{GOOD_CANAL, "MACHINE LINUXCNC", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
+    {{GOOD_CANAL, "LINK MACHINE", NULL}, CP_ST_NO_MACHINE_LINK},
 };
 
 /* A model's command refused on its own, under its SURFACE. */
@@ -453,6 +468,8 @@ int test_stream_bad_input(void)
     for (i = 0; i < sizeof bad_jobs / sizeof bad_jobs[0]; i++) {
         int c;
         rig_init();
+        CHECK(expect_code("FEED 600", 0));
+        CHECK(expect_code("SAFE 20", 0));
         for (c = 0; bad_jobs[i].cmds[c] != NULL; c++) {
             CHECK(expect_code(bad_jobs[i].cmds[c], 0));
         }
@@ -597,7 +614,8 @@ int test_stream_job_dump(void)
 int test_stream_error_cause(void)
 {
     static const char *const cases[][2] = {
-        {"FEED 0.04", "error:6 value out of range (FEED 0.04: 0 or 0.05..1e6)"},
+        {"FEED 0.0009", "error:6 value out of range (FEED 0.0009: 0 or 0.001..1e6)"},
+        {"FEED 600 100 1e7", "error:6 value out of range (FEED 1e7: 0.001..1e6)"},
         {"RXBUF 95", "error:6 value out of range (RXBUF 95: 96..1024)"},
         {"LINES 3 -10 200", "error:6 value out of range (LINES 200: |u| <= 180)"},
         {"LINES 3 5 5", "error:6 value out of range (LINES 5: u0 != u1 for n > 1)"},
@@ -832,7 +850,7 @@ int test_stream_silent_machine(void)
     CHECK(expect_code("RXBUF 128", 0));
     host_send("RUN\n");
     for (i = 0; i < 200 && next_line(l, sizeof l, 4000); i++) {
-        if (strncmp(l, "G1 ", 3) == 0 || strncmp(l, "G21", 3) == 0) {
+        if (l[0] == 'G' || l[0] == 'M') { /* the program's lines */
             g1++;
             bytes += strlen(l) + 1u;
             continue;

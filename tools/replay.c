@@ -69,7 +69,7 @@ static int drain(void)
 
 int main(void)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     char line[1024];
     hal_mem_init(&mem, &uart);
     mem.tick_ms = 0;

@@ -155,7 +155,7 @@ void job_init(struct job *j)
     j->cfg.n = 1;
     j->cfg.link = RASTER_LINK_AUTO;
     j->cfg.tol = CP_R(0.001);
-    j->rxbuf = 128u;
+    j->rxbuf = 0u; /* the dialect's (machines.def) */
 }
 
 /* ---- lookups in the tables of commands.def ---- */
@@ -467,6 +467,24 @@ static int job_place_cmd(struct job *j, struct job_args *a)
 }
 
 /* The commands of owner JOB, their arguments checked (job_args_of). */
+/* FEED f [plunge [link]]: each 0 (not set: only f) or JOB_FEED_MIN..JOB_FEED_MAX; plunge
+ * and link default to f. */
+static int job_feed(struct job *j, struct job_args *a)
+{
+    unsigned i;
+    for (i = 0; i < a->na; i++) {
+        cp_real f = a->v[i];
+        if (!(f == CP_R(0.0) && i == 0u) && !(f >= JOB_FEED_MIN && f <= JOB_FEED_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + i,
+                          i == 0u ? "0 or 0.001..1e6" : "0.001..1e6");
+        }
+    }
+    for (i = 0; i < 3u; i++) {
+        j->feed[i] = a->v[i < a->na ? i : 0u];
+    }
+    return CP_ST_OK;
+}
+
 static int job_own_command(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
@@ -495,10 +513,28 @@ static int job_own_command(struct job *j, struct job_args *a)
         j->cfg.steps = 0;
         return CP_ST_OK;
     case JOB_CMD_FEED:
-        if (v[0] < CP_R(0.0) || v[0] > JOB_FEED_MAX || (v[0] > CP_R(0.0) && v[0] < JOB_FEED_MIN)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 or 0.05..1e6");
+        return job_feed(j, a);
+    case JOB_CMD_SAFE:
+        if (!(cp_fabs(v[0]) <= JOB_SAFE_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|z| <= 1000");
         }
-        j->feed = v[0];
+        j->safe = v[0];
+        j->safe_set = 1u;
+        return CP_ST_OK;
+    case JOB_CMD_SPINDLE:
+        if (!(v[0] >= CP_R(0.0) && v[0] <= JOB_SPINDLE_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0..100000");
+        }
+        j->spindle = v[0];
+        return CP_ST_OK;
+    case JOB_CMD_WCS:
+        j->wcs = (uint8_t)a->value;
+        return CP_ST_OK;
+    case JOB_CMD_MACHINE:
+        j->machine = (uint8_t)a->value; /* enum job_machine */
+        return CP_ST_OK;
+    case JOB_CMD_LINK:
+        j->link = (uint8_t)a->value; /* enum job_link */
         return CP_ST_OK;
     case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
@@ -582,23 +618,37 @@ void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
     }
 }
 
-/* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them): TOOL, LINES or
- * CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE, PLACE, TILT; SKIP at the
- * default. */
-#define JOB_DUMP_ITEMS_OWN 10u
+/* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at
+ * the default. */
+static const uint8_t dump_cmds[] = {
+    JOB_CMD_TOOL,    JOB_CMD_LINES, JOB_CMD_STEPS,   JOB_CMD_FEED,    JOB_CMD_FORMAT,
+    JOB_CMD_RXBUF,   JOB_CMD_CHECKSUM, JOB_CMD_SURFACE, JOB_CMD_PLACE, JOB_CMD_TILT,
+    JOB_CMD_SAFE,    JOB_CMD_SPINDLE, JOB_CMD_WCS,    JOB_CMD_MACHINE, JOB_CMD_LINK};
+#define JOB_DUMP_ITEMS_OWN ((unsigned)(sizeof dump_cmds / sizeof dump_cmds[0]))
+
+/* A command of one word (FORMAT, CHECKSUM, SURFACE, WCS, MACHINE, LINK): its word for the
+ * value, SKIP at the default 0 (JOB_GCODE, off, PATH_CANAL, G54, GENERIC, HOST). */
+static int dump_word(struct job_args *a, unsigned value)
+{
+    a->word = job_word_of(a->cmd, value, 0u);
+    return value == 0u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+}
+
+/* One number v (scale 1): SKIP when skip is non-zero. */
+static int dump_number(struct job_args *a, cp_real v, int skip)
+{
+    a->na = 1u;
+    a->v[0] = v;
+    return skip ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+}
+
 static int dump_own(const struct job *j, unsigned i, struct job_args *a)
 {
     const struct raster_cfg *c = &j->cfg;
-    static const uint8_t cmd_of[JOB_DUMP_ITEMS_OWN] = {
-        JOB_CMD_TOOL,   JOB_CMD_LINES, JOB_CMD_STEPS,    JOB_CMD_FEED,
-        JOB_CMD_FORMAT, JOB_CMD_RXBUF, JOB_CMD_CHECKSUM, JOB_CMD_SURFACE,
-        JOB_CMD_PLACE,  JOB_CMD_TILT};
-    static const uint8_t skip_value[JOB_DUMP_ITEMS_OWN] = {
-        [4] = JOB_GCODE, [6] = 0u, [7] = PATH_CANAL}; /* FORMAT, CHECKSUM, SURFACE defaults */
-    unsigned value = i == 4u ? j->format : i == 6u ? j->checksum : j->kind;
-    job_dump_args(a, (enum job_cmd)cmd_of[i], JOB_NO_WORD);
-    switch (i) {
-    case 0: /* TOOL BALL r [CENTRE] (TIP is BALL's own); NONE is the default */
+    enum job_cmd cmd = (enum job_cmd)dump_cmds[i];
+    job_dump_args(a, cmd, JOB_NO_WORD);
+    switch (cmd) {
+    case JOB_CMD_TOOL: /* TOOL BALL r [CENTRE] (TIP is BALL's own); NONE is the default */
         if (c->output == RASTER_OUT_SURFACE) {
             return JOB_DUMP_SKIP;
         }
@@ -606,7 +656,7 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
         a->v[0] = c->tool_r;
         a->option = c->output == RASTER_OUT_CENTRE ? JOB_WORD_TOOL_CENTRE : JOB_NO_WORD;
         return JOB_DUMP_LINE;
-    case 1: /* LINES | CIRCLES n u0 u1 [PATCH] */
+    case JOB_CMD_LINES: /* LINES | CIRCLES n u0 u1 [PATCH] */
         if ((j->have & JOB_HAVE_RASTER) == 0u) {
             return JOB_DUMP_SKIP;
         }
@@ -620,24 +670,24 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
         a->v[1] = c->u1;
         a->scale[0] = a->scale[1] = JOB_SCALE_DEG;
         return JOB_DUMP_LINE;
-    case 2: /* STEPS m | TOL chord_um (TOL 1 is the default) */
+    case JOB_CMD_STEPS: /* STEPS m | TOL chord_um (TOL 1 is the default) */
         if (c->steps != 0u) {
             a->u = c->steps;
             return JOB_DUMP_LINE;
         }
         a->cmd = JOB_CMD_TOL;
-        a->na = 1u;
-        a->v[0] = c->tol;
         a->scale[0] = JOB_SCALE_MILLI;
-        return c->tol == CP_R(0.001) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
-    case 3: /* FEED f */
-        a->na = 1u;
-        a->v[0] = j->feed;
-        return j->feed == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
-    case 5: /* RXBUF n */
+        return dump_number(a, c->tol, c->tol == CP_R(0.001));
+    case JOB_CMD_FEED: /* FEED f plunge link */
+        a->na = 3u;
+        a->v[0] = j->feed[0];
+        a->v[1] = j->feed[1];
+        a->v[2] = j->feed[2];
+        return j->feed[0] == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case JOB_CMD_RXBUF: /* RXBUF n (0: the dialect's) */
         a->u = j->rxbuf;
-        return j->rxbuf == 128u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
-    case 8: /* PLACE x y z rz (mm, degrees as given) */
+        return j->rxbuf == 0u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case JOB_CMD_PLACE: /* PLACE x y z rz (mm, degrees as given) */
         a->na = 4u;
         a->v[0] = j->place.off[0];
         a->v[1] = j->place.off[1];
@@ -647,14 +697,27 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
                        a->v[3] == CP_R(0.0)
                    ? JOB_DUMP_SKIP
                    : JOB_DUMP_LINE;
-    case 9: /* TILT axis angle (degrees as given) */
+    case JOB_CMD_TILT: /* TILT axis angle (degrees as given) */
         a->na = 2u;
         a->v[0] = j->place.axis;
         a->v[1] = j->place.tilt;
         return j->place.tilt == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
-    default: /* FORMAT, CHECKSUM, SURFACE: a word of the value */
-        a->word = job_word_of(a->cmd, value, 0u);
-        return value == skip_value[i] ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
+    case JOB_CMD_SAFE:
+        return dump_number(a, j->safe, !j->safe_set);
+    case JOB_CMD_SPINDLE:
+        return dump_number(a, j->spindle, j->spindle == CP_R(0.0));
+    case JOB_CMD_FORMAT:
+        return dump_word(a, j->format);
+    case JOB_CMD_CHECKSUM:
+        return dump_word(a, j->checksum);
+    case JOB_CMD_SURFACE:
+        return dump_word(a, j->kind);
+    case JOB_CMD_WCS:
+        return dump_word(a, j->wcs);
+    case JOB_CMD_MACHINE:
+        return dump_word(a, j->machine);
+    default: /* JOB_CMD_LINK */
+        return dump_word(a, j->link);
     }
 }
 

@@ -12,7 +12,17 @@
  *   CIRCLES n u0 u1 [PATCH]  family-1 arcs at n evenly spaced t over contact angles
  *                            u0..u1 (PATCH: between the family-2 lines that start at u0, u1)
  *   STEPS m | TOL chord_um   fixed steps per line, or a chord tolerance (default TOL 1)
- *   FEED f                   mm/min on every G1 (0 = no F word)
+ *   FEED f [plunge [link]]   mm/min of the cut, of the plunge to the first point and of
+ *                            the link points (plunge and link default to f); GCODE needs
+ *                            it (0: not set, RUN answers error:40)
+ *   SAFE z                   the safe height, mm in table coordinates (after PLACE/TILT):
+ *                            rapids happen there; GCODE needs it (error:41)
+ *   SPINDLE rpm              M3 S<rpm> before the cut, M5 after it (0: no spindle words)
+ *   WCS G54..G59             the work offset of the program (default G54)
+ *   MACHINE GENERIC | GRBL | MARLIN | LINUXCNC   the dialect of the program and of the
+ *                            machine's answers (machines.def; default GENERIC)
+ *   LINK HOST | MACHINE      where the G-code program goes: up the host link (default: a
+ *                            host that takes the G-code itself) or down the machine link
  *   FORMAT GCODE | FRAMES
  *   RXBUF n                  the machine's RX buffer for character counting
  *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 96..1024, default 128)
@@ -45,6 +55,17 @@ enum job_format {
 #undef CP_OUTPUT
 };
 
+/* The machine dialects (MACHINE), one per row of machines.def: JOB_MACHINE_GENERIC, ... */
+enum job_machine {
+#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END) JOB_MACHINE_##NAME,
+#include "machines.def"
+#undef CP_MACHINE
+    JOB_MACHINES
+};
+
+/* LINK: where the G-code program goes (job.link). */
+enum job_link { JOB_LINK_HOST = 0, JOB_LINK_MACHINE = 1 };
+
 /* have bits: what the canal's and the raster's commands set (every model's, kept by
  * SURFACE). A model's own progress is in its geometry (union path_geom), which SURFACE
  * starts afresh; job_<m>_ready reads both. */
@@ -59,7 +80,9 @@ enum job_format {
 #define JOB_RXBUF_MIN 96u /* >= the longest stream line (out_gcode.h OUT_GCODE_LINE_MAX) */
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
-#define JOB_FEED_MIN CP_R(0.05) /* smallest non-zero FEED: F is printed with 1 decimal */
+#define JOB_FEED_MIN CP_R(0.001) /* smallest non-zero FEED, mm/min (F is printed exactly) */
+#define JOB_SAFE_MAX CP_R(1000.0) /* SAFE: |z| <= 1 m (mm) */
+#define JOB_SPINDLE_MAX CP_R(100000.0) /* SPINDLE: 0..100000 rpm */
 #define JOB_PLACE_OFF_MAX CP_R(1000.0) /* PLACE: |x|, |y|, |z| <= 1 m (mm) */
 #define JOB_PLACE_RZ_MAX CP_R(360.0)   /* PLACE: |rz| <= 360 deg */
 #define JOB_TILT_AXIS_MAX CP_R(360.0)  /* TILT: |axis_deg| <= 360 */
@@ -93,8 +116,14 @@ struct job {
     union path_geom geom;   /* geometry of the model of `kind` (job_geom_fill: the canal's
                                and DRC's radius law from `canal`, before path_init) */
     struct job_place place;  /* PLACE, TILT (all 0: none) */
-    cp_real feed;            /* mm/min, 0 = omit F */
-    uint16_t rxbuf;          /* machine RX buffer, bytes */
+    cp_real feed[3];         /* FEED cut, plunge, link: mm/min (0: not set) */
+    cp_real safe;            /* SAFE z, mm (valid when safe_set) */
+    cp_real spindle;         /* SPINDLE rpm, 0 = no spindle words */
+    uint16_t rxbuf;          /* RXBUF: the machine's RX buffer, bytes; 0 = the dialect's */
+    uint8_t machine;         /* enum job_machine (MACHINE) */
+    uint8_t link;            /* enum job_link (LINK) */
+    uint8_t wcs;             /* WCS: 0..5 for G54..G59 */
+    uint8_t safe_set;        /* 1 once SAFE was given */
     uint16_t have;           /* JOB_HAVE_* bits */
     uint8_t kind;            /* enum path_kind (SURFACE), default PATH_CANAL */
     uint8_t format;          /* enum job_format */

@@ -3,55 +3,129 @@
  */
 #include "out_gcode.h"
 #include "fmt.h"
-#include "parse.h"
 
-/* The longest line: "N<10 digits> " (12), "G1 X" and " Y", " Z", " F" each with an int32
- * count written with its sign and point (12 bytes), "*<3 digits>" (4), '\n': 75 bytes.
- * The appends below are bounded by pend[] anyway; the single bytes are stored directly. */
-CP_STATIC_ASSERT(12 + 4 + 12 + 3 * (2 + 12) + 4 + 1 <= OUT_GCODE_LINE_MAX, gcode_line_fits);
+/* The longest line: "N<10 digits> " (12), "G1 X" and " Y", " Z" each with an int32 count
+ * written with its sign and point (12 bytes), " F" and a feed by fmt_real (at most 1 +
+ * PARSE_MAX_DIGITS + 6 = 24 here), "*<3 digits>" (4), '\n': 79 bytes. The appends below
+ * are bounded by pend[] anyway; the single bytes are stored directly. Without N and '*'
+ * (grbl) it is 63: under grbl's 79 (machines.def LINE_MAX). */
+CP_STATIC_ASSERT(12 + 4 + 12 + 2 * (2 + 12) + 2 + 24 + 4 + 1 <= OUT_GCODE_LINE_MAX, gcode_line_fits);
+CP_STATIC_ASSERT(4 + 12 + 2 * (2 + 12) + 2 + 24 <= 79, gcode_line_fits_grbl);
 
-/* Append "G1 X.. Y.. Z.." (4 decimals) and " F.." (1 decimal) unless the feed is 0. */
-static void put_g1(char *out, size_t cap, size_t *pos, const struct raster_pt *pt,
-                   cp_real feed)
+/* The stream line of each item (out_gcode_item), checksums and numbers aside. */
+static const char *const item_text[] = {
+    [OUT_GCODE_M110] = "M110 N0",      [OUT_GCODE_MODES] = "G21 G90 G17 G94 ",
+    [OUT_GCODE_G21] = "G21",           [OUT_GCODE_G90] = "G90",
+    [OUT_GCODE_WCS] = "",              [OUT_GCODE_SPINDLE_ON] = "M3 S",
+    [OUT_GCODE_SAFE] = "G0 Z",         [OUT_GCODE_ABOVE] = "G0 X",
+    [OUT_GCODE_SPINDLE_OFF] = "M5",    [OUT_GCODE_END] = "",
+};
+
+/* G54 .. G59 */
+static const char *const wcs_text[6] = {"G54", "G55", "G56", "G57", "G58", "G59"};
+
+/* Append a coordinate in mm with 4 decimals (0.1 um). */
+static void put_mm(char *out, size_t cap, size_t *pos, cp_real v)
 {
-    (void)fmt_str(out, cap, pos, "G1 X");
-    (void)fmt_fixed(out, cap, pos, out_quantize(pt->p.x, CP_R(10000.0)), 4u);
-    (void)fmt_str(out, cap, pos, " Y");
-    (void)fmt_fixed(out, cap, pos, out_quantize(pt->p.y, CP_R(10000.0)), 4u);
-    (void)fmt_str(out, cap, pos, " Z");
-    (void)fmt_fixed(out, cap, pos, out_quantize(pt->p.z, CP_R(10000.0)), 4u);
-    if (feed > CP_R(0.0)) {
-        (void)fmt_str(out, cap, pos, " F");
-        (void)fmt_fixed(out, cap, pos, out_quantize(feed, CP_R(10.0)), 1u);
-    }
+    (void)fmt_fixed(out, cap, pos, out_quantize(v, CP_R(10000.0)), 4u);
 }
 
-/* Build stream line idx into g->pend; returns its length, or < 0 (the point's error).
- * Lines 0..lead-1 are the header, then one G1 per point from run->start_k. */
+/* The feed of point k of a run that starts at start_k: the plunge's for the first, the
+ * link feed on a link point, else the cut's. */
+static cp_real feed_of(const struct job *job, const struct path *path, uint32_t start_k,
+                       uint32_t k)
+{
+    struct raster_at at;
+    if (k == start_k) {
+        return job->feed[1];
+    }
+    raster_locate(k, path->info.steps, path->info.link, &at);
+    return at.line < 0 ? job->feed[2] : job->feed[0];
+}
+
+/* Append point k's line: "G1 X.. Y.. Z.." and " F<feed>" where the feed changes (modal
+ * F: the machine keeps the previous line's). Returns CP_OK or the point's error. */
+static int put_point(char *out, size_t cap, size_t *pos, const struct out_run *run,
+                     struct path *path, const struct job *job, uint32_t k)
+{
+    struct raster_pt pt;
+    cp_real f = feed_of(job, path, run->start_k, k);
+    int e = out_point(path, &run->place, k, &pt);
+    if (e != CP_OK) {
+        return e;
+    }
+    (void)fmt_str(out, cap, pos, "G1 X");
+    put_mm(out, cap, pos, pt.p.x);
+    (void)fmt_str(out, cap, pos, " Y");
+    put_mm(out, cap, pos, pt.p.y);
+    (void)fmt_str(out, cap, pos, " Z");
+    put_mm(out, cap, pos, pt.p.z);
+    if (k == run->start_k || f != feed_of(job, path, run->start_k, k - 1u)) {
+        (void)fmt_str(out, cap, pos, " F");
+        (void)fmt_real(out, cap, pos, f, CP_R(1.0));
+    }
+    return CP_OK;
+}
+
+/* Append the item's line. ABOVE fetches the run's first point (for its X and Y). */
+static int put_item(char *out, size_t cap, size_t *pos, const struct out_run *run,
+                    struct path *path, const struct job *job, enum out_gcode_item it)
+{
+    struct raster_pt pt;
+    int e;
+    (void)fmt_str(out, cap, pos, item_text[it]);
+    switch (it) {
+    case OUT_GCODE_MODES:
+    case OUT_GCODE_WCS:
+        (void)fmt_str(out, cap, pos, wcs_text[job->wcs < 6u ? job->wcs : 0u]);
+        break;
+    case OUT_GCODE_SPINDLE_ON:
+        (void)fmt_real(out, cap, pos, job->spindle, CP_R(1.0));
+        break;
+    case OUT_GCODE_SAFE:
+        put_mm(out, cap, pos, job->safe);
+        break;
+    case OUT_GCODE_ABOVE:
+        e = out_point(path, &run->place, run->start_k, &pt);
+        if (e != CP_OK) {
+            return e;
+        }
+        put_mm(out, cap, pos, pt.p.x);
+        (void)fmt_str(out, cap, pos, " Y");
+        put_mm(out, cap, pos, pt.p.y);
+        break;
+    case OUT_GCODE_END:
+        (void)fmt_str(out, cap, pos, machine_dialect(job->machine)->end);
+        break;
+    default: /* the text alone */
+        break;
+    }
+    return CP_OK;
+}
+
+/* Build stream line idx into g->pend; returns its length, or < 0 (the point's error). */
 static int build_line(struct out_gcode *g, const struct out_run *run, struct path *path,
                       const struct job *job, uint32_t idx)
 {
     char *out = g->pend;
-    const size_t cap = sizeof g->pend;
+    const size_t cap = sizeof g->pend - 6u; /* room for "*<cs>\n" */
     size_t pos = 0;
+    int e;
     if (job->checksum) {
-        out[pos++] = 'N';
+        (void)fmt_str(out, cap, &pos, "N");
         (void)fmt_u32(out, cap, &pos, idx);
-        out[pos++] = ' ';
+        (void)fmt_str(out, cap, &pos, " ");
     }
-    /* the header's lines are the last `lead` lines before the points: the modes line
-     * last, the line-number reset (checksums only) before it */
-    if (idx < run->lead && run->lead - idx == 2u) { /* checksums: number this run from N1 */
-        (void)fmt_str(out, cap, &pos, "M110 N0");
-    } else if (idx < run->lead) { /* the modes line, just before the first point */
-        (void)fmt_str(out, cap, &pos, "G21 G90 G17");
+    if (idx < run->lead) {
+        e = put_item(out, cap, &pos, run, path, job, (enum out_gcode_item)g->lead[idx]);
+    } else if (idx - run->lead < g->points) {
+        e = put_point(out, cap, &pos, run, path, job, run->start_k + (idx - run->lead));
     } else {
-        struct raster_pt pt;
-        int e = out_point(path, &run->place, run->start_k + (idx - run->lead), &pt);
-        if (e != CP_OK) {
-            return e;
-        }
-        put_g1(out, cap, &pos, &pt, job->feed);
+        e = put_item(out, cap, &pos, run, path, job,
+                     (enum out_gcode_item)g->trail[idx - run->lead - g->points]);
+    }
+    if (e != CP_OK) {
+        return e;
     }
     if (job->checksum) {
         uint8_t cs = 0;
@@ -60,15 +134,62 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
             cs ^= (uint8_t)out[i];
         }
         out[pos++] = '*';
-        (void)fmt_u32(out, cap, &pos, cs);
+        (void)fmt_u32(out, sizeof g->pend, &pos, cs);
     }
     out[pos++] = '\n';
     return (int)pos;
 }
 
+int out_gcode_check(const struct job *job)
+{
+    if (!(job->feed[0] > CP_R(0.0))) {
+        return CP_ST_NO_FEED;
+    }
+    if (!job->safe_set) {
+        return CP_ST_NO_SAFE;
+    }
+    if (job->checksum && !machine_dialect(job->machine)->checksum) {
+        return CP_ST_DIALECT;
+    }
+    return CP_ST_OK;
+}
+
+/* The lines around the points for the job's dialect (out_gcode.h). */
+static void plan_program(struct out_gcode *g, struct out_run *run, const struct job *job)
+{
+    const struct machine_dialect *d = machine_dialect(job->machine);
+    uint8_t n = 0;
+    if (job->checksum) { /* a Marlin-style machine numbers this run's lines from N1 */
+        g->lead[n++] = OUT_GCODE_M110;
+    }
+    if (d->split) {
+        g->lead[n++] = OUT_GCODE_G21;
+        g->lead[n++] = OUT_GCODE_G90;
+        if (job->wcs != 0u) {
+            g->lead[n++] = OUT_GCODE_WCS;
+        }
+    } else {
+        g->lead[n++] = OUT_GCODE_MODES;
+    }
+    if (job->spindle > CP_R(0.0)) {
+        g->lead[n++] = OUT_GCODE_SPINDLE_ON;
+    }
+    g->lead[n++] = OUT_GCODE_SAFE;
+    g->lead[n++] = OUT_GCODE_ABOVE; /* n <= 8 = OUT_GCODE_LEAD_MAX */
+    run->lead = n;
+    n = 0;
+    g->trail[n++] = OUT_GCODE_SAFE;
+    if (job->spindle > CP_R(0.0)) {
+        g->trail[n++] = OUT_GCODE_SPINDLE_OFF;
+    }
+    g->trail[n++] = OUT_GCODE_END;
+    g->ntrail = n;
+}
+
 size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct job *job,
                        const struct path *path, uint8_t *out, size_t cap)
 {
+    const struct machine_dialect *d = machine_dialect(job->machine);
     char *s = (char *)out;
     size_t pos = 0;
     g->ring_head = 0;
@@ -77,10 +198,12 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     g->resync = 0;
     g->pend_len = 0;
     g->pend_idx = 0;
-    /* "M110 N0" first with checksums, so that a Marlin-style machine numbers this run's
-     * lines from N1 whatever it saw before */
-    run->lead = (uint8_t)(job->checksum ? 2u : 1u);
-    run->end = path_count(path) - run->start_k + run->lead;
+    g->machine = job->machine;
+    g->rxbuf = d->acks ? (job->rxbuf != 0u ? job->rxbuf : d->rxbuf) : 0u;
+    g->points = path_count(path) - run->start_k;
+    g->t_poll = run->t_last;
+    plan_program(g, run, job);
+    run->end = run->lead + g->points + g->ntrail;
     /* what the stream will hold, for hosts and judges */
     (void)fmt_str(s, cap, &pos, "[RUN:points=");
     (void)fmt_u32(s, cap, &pos, path_count(path));
@@ -99,24 +222,28 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
 
 /* Send the line in pend[] if the machine's RX buffer has room for it. Returns its
  * length, or 0. */
-static size_t send_pending(struct out_gcode *g, struct out_run *run, const struct job *job,
-                           uint32_t now, uint8_t *out, size_t cap)
+static size_t send_pending(struct out_gcode *g, struct out_run *run, uint32_t now, uint8_t *out,
+                           size_t cap)
 {
     size_t i, n = g->pend_len;
-    if ((uint32_t)g->inflight + (uint32_t)n > job->rxbuf || n > cap) {
+    if ((g->rxbuf != 0u && (uint32_t)g->inflight + (uint32_t)n > g->rxbuf) || n > cap) {
         return 0;
     }
     for (i = 0; i < n; i++) {
         out[i] = (uint8_t)g->pend[i];
     }
     g->pend_len = 0;
+    run->next++;
+    if (g->rxbuf == 0u) {
+        return n; /* no acknowledgements: nothing in flight */
+    }
     g->ring[(g->ring_head + g->ring_n) % OUT_GCODE_RING] = (uint8_t)n;
     g->ring_n++;
     g->inflight = (uint16_t)(g->inflight + n);
     if (g->ring_n == 1u) {
         run->t_last = now; /* the answer clock starts with the first line in flight */
+        g->t_poll = now;
     }
-    run->next++;
     return n;
 }
 
@@ -149,7 +276,7 @@ int out_gcode_emit(struct out_gcode *g, struct out_run *run, struct path *path,
             g->pend_len = (uint8_t)n;
             g->pend_idx = run->next;
         }
-        *len = send_pending(g, run, job, now, out, cap);
+        *len = send_pending(g, run, now, out, cap);
         if (*len > 0u) {
             return OUT_GOING;
         }
@@ -160,44 +287,24 @@ int out_gcode_emit(struct out_gcode *g, struct out_run *run, struct path *path,
     return OUT_GOING;
 }
 
-/* The prefixes of enum out_gcode_answer, tried in its order. */
-static const char *const answer_prefix[OUT_GCODE_NOT_ANSWER] = {
-    [OUT_GCODE_OK] = "ok",          [OUT_GCODE_ERROR] = "error:", [OUT_GCODE_ALARM] = "ALARM:",
-    [OUT_GCODE_MARLIN_ERR] = "Error:", [OUT_GCODE_RS] = "rs ",    [OUT_GCODE_RESEND] = "Resend:",
-};
-
-enum out_gcode_answer out_gcode_answer_kind(const char *line, size_t len, size_t *arg)
+int out_gcode_poll_due(struct out_gcode *g, const struct out_run *run, uint32_t now)
 {
-    unsigned k;
-    for (k = 0; k < OUT_GCODE_NOT_ANSWER; k++) {
-        const char *w = answer_prefix[k];
-        size_t a = 0;
-        while (a < len && w[a] != '\0' && line[a] == w[a]) { /* a < len bounds it */
-            a++;
-        }
-        if (w[a] == '\0' && (k != OUT_GCODE_OK || len == 2u)) { /* "ok" is the whole line */
-            *arg = a;
-            return (enum out_gcode_answer)k;
-        }
+    if (g->ring_n == 0u || (uint32_t)(now - run->t_last) < OUT_GCODE_POLL_MS ||
+        (uint32_t)(now - g->t_poll) < OUT_GCODE_POLL_MS) {
+        return 0;
     }
-    *arg = 0;
-    return OUT_GCODE_NOT_ANSWER;
+    g->t_poll = now;
+    return 1;
 }
 
 /* "Resend: n": regenerate from line n once the machine has gone quiet (out_gcode_emit);
  * later requests for lines already in flight are ignored. */
-static int take_resend(struct out_gcode *g, struct out_run *run, const char *arg,
-                       size_t arg_len)
+static int take_resend(struct out_gcode *g, struct out_run *run, uint32_t n)
 {
-    uint32_t n;
-    size_t a = 0;
-    while (a < arg_len && arg[a] == ' ') {
-        a++;
-    }
     if (g->resync) {
         return OUT_GOING;
     }
-    if (parse_uint(arg + a, arg_len - a, UINT32_MAX, &n) != CP_ST_OK || n >= run->next) {
+    if (n >= run->next) {
         /* a line we never sent: the machine counts differently (no M110, or a garbled
          * request); its oks cannot be trusted - stop */
         return CP_ST_PEER_ERROR;
@@ -209,11 +316,11 @@ static int take_resend(struct out_gcode *g, struct out_run *run, const char *arg
 }
 
 int out_gcode_answer(struct out_gcode *g, struct out_run *run, const struct job *job,
-                     enum out_gcode_answer kind, const char *arg, size_t arg_len, uint32_t now)
+                     enum machine_reply kind, uint32_t num, uint32_t now)
 {
-    run->t_last = now;
     switch (kind) {
-    case OUT_GCODE_OK:
+    case MACHINE_OK:
+        run->t_last = now;
         if (!g->resync && g->ring_n > 0u) { /* the oldest line is answered */
             g->inflight = (uint16_t)(g->inflight - g->ring[g->ring_head]);
             g->ring_head = (uint8_t)((g->ring_head + 1u) % OUT_GCODE_RING);
@@ -221,16 +328,21 @@ int out_gcode_answer(struct out_gcode *g, struct out_run *run, const struct job 
             run->acked++;
         }
         return OUT_GOING;
-    case OUT_GCODE_ERROR:
-    case OUT_GCODE_MARLIN_ERR:
-        /* with checksums a machine error precedes its Resend: request */
-        return job->checksum ? OUT_GOING : CP_ST_PEER_ERROR;
-    case OUT_GCODE_ALARM:
+    case MACHINE_ALIVE:
+        run->t_last = now;
+        return OUT_GOING;
+    case MACHINE_ERROR:
+    case MACHINE_ALARM:
         return CP_ST_PEER_ERROR;
-    case OUT_GCODE_RS:
-    case OUT_GCODE_RESEND:
-        return job->checksum ? take_resend(g, run, arg, arg_len) : OUT_GOING;
-    default:
+    case MACHINE_RETRY: /* the Resend that follows says from where */
+        run->t_last = now;
+        return job->checksum ? OUT_GOING : CP_ST_PEER_ERROR;
+    case MACHINE_RESEND:
+        run->t_last = now;
+        return job->checksum ? take_resend(g, run, num) : OUT_GOING;
+    case MACHINE_RESET:
+        return CP_ST_MACHINE_RESET;
+    default: /* MACHINE_OTHER: chatter */
         return OUT_GOING;
     }
 }

@@ -35,6 +35,10 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
         cfg->uart->read == NULL || cfg->uart->now_ms == NULL) {
         return CP_ERR_INVAL;
     }
+    if (cfg->machine != NULL && (cfg->machine->write == NULL || cfg->machine->read == NULL ||
+                                 cfg->machine->now_ms == NULL)) {
+        return CP_ERR_INVAL;
+    }
     {
         /* every counter, length, flag and buffer 0: line_len, rx/tx, err = CP_OK,
          * state = PROTO_IDLE, fmt = JOB_GCODE, the tail closed, ... (volatile stores,
@@ -47,6 +51,7 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
         }
     }
     p->uart = cfg->uart;
+    machine_link_init(&p->mach, cfg->machine);
     job_init(&p->job);
     return CP_OK;
 }
@@ -211,7 +216,18 @@ static void run_finish(struct proto *p, int status)
         break;
     }
     p->tx_len = (uint16_t)(p->tx_len + n);
-    reply_status(p, status);
+    if (p->fault_len > 0u && (status == CP_ST_PEER_ERROR || status == CP_ST_MACHINE_RESET)) {
+        /* "error:19 machine reported an error (machine ALARM:9)" */
+        tx_str(p, "error:");
+        tx_u32(p, (uint32_t)status);
+        tx_str(p, " ");
+        tx_str(p, cp_status_text(status));
+        tx_str(p, " (machine ");
+        tx_mem(p, p->fault, p->fault_len);
+        tx_str(p, ")\n");
+    } else {
+        reply_status(p, status);
+    }
     p->state = PROTO_IDLE;
 }
 
@@ -223,6 +239,15 @@ static int run_start(struct proto *p, uint32_t first)
     int err;
     if (job_ready(&p->job) != CP_ST_OK) {
         return CP_ST_NO_JOB;
+    }
+    if (p->job.format == JOB_GCODE) {
+        err = out_gcode_check(&p->job);
+        if (err != CP_ST_OK) {
+            return err;
+        }
+        if (p->job.link == JOB_LINK_MACHINE && p->mach.uart == NULL) {
+            return CP_ST_NO_MACHINE_LINK;
+        }
     }
     job_geom_fill(&p->job);
     err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
@@ -236,6 +261,8 @@ static int run_start(struct proto *p, uint32_t first)
         return CP_ST_RESUME_RANGE;
     }
     p->fmt = p->job.format;
+    p->prog_link = p->job.format == JOB_GCODE ? p->job.link : (uint8_t)JOB_LINK_HOST;
+    p->fault_len = 0u;
     p->run.start_k = first;
     p->run.next = 0;
     p->run.acked = 0;
@@ -255,6 +282,127 @@ static int run_start(struct proto *p, uint32_t first)
     return CP_ST_OK;
 }
 
+/*---------------------------------------------------------------------------
+ * The machine link
+ *-------------------------------------------------------------------------*/
+/* With the program on the machine link: a dialect with a POLL byte (grbl '?') is asked
+ * for a status report when it has been silent OUT_GCODE_POLL_MS while lines are in
+ * flight or a passed-through line waits (its "<...>" proves it alive: a long move). */
+static void machine_poll(struct proto *p, uint32_t now)
+{
+    uint8_t c = machine_dialect(p->job.machine)->poll;
+    int due = 0;
+    if (c == 0u || machine_link_room(&p->mach) == 0u) {
+        return;
+    }
+    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
+        due = out_gcode_poll_due(&p->out.gcode, &p->run, now);
+    } else if (p->pass && (uint32_t)(now - p->t_pass) >= OUT_GCODE_POLL_MS) {
+        p->t_pass = now - OUT_GCODE_POLL_MS / 2u; /* the next in half the time, not at once */
+        due = 1;
+    }
+    if (due) {
+        machine_link_put(&p->mach, (const char *)&c, 1u);
+    }
+}
+
+/* Keep the machine's line that stopped a run, for the host's reply. */
+static void keep_fault(struct proto *p, const char *line, size_t len)
+{
+    size_t i;
+    for (i = 0; i < len && i < PROTO_FAULT_MAX; i++) {
+        p->fault[i] = line[i];
+    }
+    p->fault_len = (uint8_t)i;
+}
+
+/* "[MACHINE:<line>]": a machine line that is not an answer, relayed to the host. */
+static void relay_wrapped(struct proto *p, const char *line, size_t len)
+{
+    tx_str(p, "[MACHINE:");
+    tx_mem(p, line, len);
+    tx_str(p, "]\n");
+}
+
+/* One complete line from the machine link (p->mach.line). Host tx room >= PROTO_REPLY_MAX. */
+static void machine_line(struct proto *p)
+{
+    const char *line = p->mach.line;
+    size_t len = p->mach.line_len;
+    uint32_t num;
+    enum machine_reply kind = machine_reply(p->job.machine, line, len, &num);
+    uint32_t now = hal_uart_now_ms(p->uart);
+    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
+        int st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, num, now);
+        if (kind == MACHINE_OTHER) {
+            relay_wrapped(p, line, len);
+        }
+        if (st != OUT_GOING) {
+            keep_fault(p, line, len);
+            run_finish(p, st);
+        }
+        return;
+    }
+    if (p->pass) { /* a passed-through host line: its conversation goes up as it is */
+        p->t_pass = now;
+        tx_mem(p, line, len);
+        tx_str(p, "\n");
+        if (kind == MACHINE_OK || kind == MACHINE_ERROR) {
+            p->pass = 0u;
+        }
+        return;
+    }
+    if (len > 0u) {
+        relay_wrapped(p, line, len); /* unasked: a banner, an alarm, late answers */
+    }
+}
+
+/* The machine link is gone (hang-up): a run on it ends, and the port has one link now. */
+static void machine_gone(struct proto *p)
+{
+    p->mach.uart = NULL;
+    p->pass = 0u;
+    if (p->state != PROTO_IDLE && p->prog_link == JOB_LINK_MACHINE) {
+        run_finish(p, CP_ST_LINK_ERROR);
+    }
+}
+
+/* Take the machine's lines (at most MACHINE_RX_CHUNK per call, while a relayed line fits
+ * the host's tx), time out a passed-through line, poll a silent machine. Returns 1 if
+ * anything moved. */
+static int machine_take(struct proto *p)
+{
+    unsigned i;
+    int moved = 0;
+    uint32_t now;
+    if (p->mach.uart == NULL) {
+        return 0;
+    }
+    for (i = 0; i < MACHINE_RX_CHUNK && tx_room(p) >= PROTO_REPLY_MAX; i++) {
+        int r = machine_link_line(&p->mach);
+        if (r < 0) {
+            machine_gone(p);
+            return 1;
+        }
+        if (r == 0) {
+            break;
+        }
+        machine_line(p);
+        moved = 1;
+    }
+    now = hal_uart_now_ms(p->uart);
+    if (p->pass && (uint32_t)(now - p->t_pass) > OUT_GCODE_PEER_TIMEOUT_MS &&
+        tx_room(p) >= PROTO_REPLY_MAX) {
+        p->pass = 0u;
+        reply_status(p, CP_ST_TIMEOUT);
+        moved = 1;
+    }
+    if (p->state == PROTO_IDLE) {
+        machine_poll(p, now);
+    }
+    return moved;
+}
+
 /* Emit at most one stream item if flow control allows. Returns 1 if one was sent or
  * the run ended. */
 static int run_emit(struct proto *p)
@@ -271,6 +419,21 @@ static int run_emit(struct proto *p)
     cap = sizeof p->tx - p->tx_len;
     switch ((enum job_format)p->fmt) {
     case JOB_GCODE:
+        if (p->prog_link == JOB_LINK_MACHINE) { /* the program goes down the machine link */
+            if (machine_link_room(&p->mach) < OUT_GCODE_LINE_MAX) {
+                return 0;
+            }
+            st = out_gcode_emit(&p->out.gcode, &p->run, &p->path, &p->job, now, sending,
+                                p->mach.tx + p->mach.tx_len, MACHINE_TX_BUF - p->mach.tx_len,
+                                &n);
+            p->mach.tx_len = (uint16_t)(p->mach.tx_len + n);
+            machine_poll(p, now);
+            if (st != OUT_GOING) {
+                run_finish(p, st);
+                return 1;
+            }
+            return n > 0u;
+        }
         st = out_gcode_emit(&p->out.gcode, &p->run, &p->path, &p->job, now, sending, out, cap,
                             &n);
         break;
@@ -286,28 +449,30 @@ static int run_emit(struct proto *p)
     return n > 0u;
 }
 
-/* A line that is a machine's answer (ok, error:, ALARM:, Error:, rs, Resend:): taken
- * by a G-code run, swallowed without a reply otherwise (late answers after an aborted
- * run must not start a ping-pong). Returns 1 if the line was one, else 0. */
-static int machine_answer(struct proto *p)
+/* A host-link line that is a machine's answer (ok, error:, ALARM:, Error:, Resend:, rs,
+ * busy:, a banner; machine.h): taken by a G-code run whose program goes up the host link,
+ * swallowed without a reply otherwise (late answers after an aborted run must not start a
+ * ping-pong; a host never sends them to a machine). Returns 1 if the line was one. */
+static int host_answer(struct proto *p)
 {
-    size_t arg;
-    enum out_gcode_answer kind = out_gcode_answer_kind(p->line, p->line_len, &arg);
+    uint32_t num;
+    enum machine_reply kind = machine_reply(p->job.machine, p->line, p->line_len, &num);
     int st = OUT_GOING;
-    if (kind == OUT_GCODE_NOT_ANSWER) {
+    if (kind == MACHINE_OTHER) {
         return 0;
     }
-    if (p->state != PROTO_IDLE) {
+    if (p->state != PROTO_IDLE && p->prog_link == JOB_LINK_HOST) {
         switch ((enum job_format)p->fmt) {
         case JOB_GCODE:
-            st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, p->line + arg,
-                                  p->line_len - arg, hal_uart_now_ms(p->uart));
+            st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, num,
+                                  hal_uart_now_ms(p->uart));
             break;
         case JOB_FRAMES:
             break; /* no text reaches the line assembly during a FRAMES run */
         }
     }
     if (st != OUT_GOING) {
+        keep_fault(p, p->line, p->line_len);
         run_finish(p, st);
     }
     return 1;
@@ -390,7 +555,7 @@ static void exec_line(struct proto *p)
         return;
     }
     line_trim(p);
-    if (machine_answer(p)) {
+    if (host_answer(p)) {
         return;
     }
     if (p->line_len == 0u) {
@@ -405,9 +570,10 @@ static void exec_line(struct proto *p)
         return;
     }
     if (p->state != PROTO_IDLE) {
-        /* during a run the peer is the machine: a job command gets error:7, any other
-         * line (echo:, busy:, [MSG:...]) is chatter and gets no reply in the stream */
-        if (job_is_command(p->line, p->line_len)) {
+        /* a G-code run up the host link: the peer is the machine, a job command gets
+         * error:7, any other line (echo:, [MSG:...]) is chatter with no reply in the
+         * stream; otherwise the host link carries no chatter: every line gets error:7 */
+        if (p->prog_link == JOB_LINK_MACHINE || job_is_command(p->line, p->line_len)) {
             reply_status(p, CP_ST_BUSY);
         }
         return;
@@ -424,12 +590,38 @@ static void exec_line(struct proto *p)
             return;
         }
     }
+    if (st == JOB_NOT_MINE && p->mach.uart != NULL) { /* pass-through (proto.h) */
+        machine_link_put(&p->mach, p->line, p->line_len);
+        machine_link_put(&p->mach, "\n", 1u);
+        p->pass = 1u;
+        p->t_pass = hal_uart_now_ms(p->uart);
+        return;
+    }
     reply_command(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
 }
 
-/* Real-time bytes act at once, outside the line assembly (grbl). */
+/* '!', '~', 0x18 also go to a machine that has real-time bytes (a dialect with a POLL
+ * byte: grbl) when the job's program goes down the machine link. */
+static void realtime_to_machine(struct proto *p, uint8_t c)
+{
+    if (p->mach.uart != NULL && p->job.link == JOB_LINK_MACHINE &&
+        machine_dialect(p->job.machine)->poll != 0u && machine_link_room(&p->mach) > 0u) {
+        machine_link_put(&p->mach, (const char *)&c, 1u);
+    }
+}
+
+/* Real-time bytes act at once, outside the line assembly (grbl). During a G-code run up
+ * the host link, whose peer is the machine, only between lines: a '?' inside a line of
+ * its chatter (echo:Unknown command: "M999?") is text. */
 static int realtime(struct proto *p, uint8_t c)
 {
+    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_HOST &&
+        p->line_len > 0u) {
+        return 0;
+    }
+    if (c == RT_HOLD || c == RT_RESUME || c == RT_ABORT) {
+        realtime_to_machine(p, c);
+    }
     switch (c) {
     case RT_STATUS:
         reply_report(p);
@@ -559,6 +751,11 @@ int proto_poll(struct proto *p)
             p->tx_len = 0;
         }
     }
+    n = machine_link_flush(&p->mach);
+    if (n < 0) {
+        machine_gone(p);
+    }
+    moved |= (n > 0);
     /* 2. refill the receive chunk */
     if (p->rx_pos == p->rx_len) {
         n = hal_uart_read(p->uart, p->rx, sizeof p->rx);
@@ -585,11 +782,12 @@ int proto_poll(struct proto *p)
         feed(p, out_frames_tail_next(&p->tail), 1);
         moved = 1;
     }
-    while (p->dump == 0u && p->tail.replay == 0u && p->rx_pos < p->rx_len &&
+    while (p->dump == 0u && p->tail.replay == 0u && !p->pass && p->rx_pos < p->rx_len &&
            tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
         feed(p, p->rx[p->rx_pos++], 0);
         moved = 1;
     }
+    moved |= machine_take(p);
     /* 4. one stream item */
     if (p->state != PROTO_IDLE) {
         moved |= run_emit(p);

@@ -1,31 +1,43 @@
 /* proto.h - the protocol engine: commands in, replies and the toolpath stream out,
- * over one hal_uart. The full wire description is docs/PROTOCOL.md.
+ * over a host link and, where the port has one, a machine link (two hal_uarts). The full
+ * wire description is docs/PROTOCOL.md.
  * SPDX-License-Identifier: MIT
  *
- * grbl conventions: ASCII lines ending in '\n' or '\r' ("\r\n" counts once);
- * every command line is answered "ok" or "error:<code> <text>" (cp_status.def).
- * The firmware never transmits before the host has spoken (no boot banner):
- * bytes written to a pty or QEMU UART before the host attaches are lost.
+ * grbl conventions on the host link: ASCII lines ending in '\n' or '\r' ("\r\n" counts
+ * once); every command line is answered "ok" or "error:<code> <text> (<cause>)"
+ * (cp_status.def). The firmware never transmits before the host has spoken (no boot
+ * banner): bytes written to a pty or QEMU UART before the host attaches are lost.
  *
- * Commands: $I | HELLO (version and limits), the job commands of job.h, RUN,
- * RESUME k. Real-time bytes (outside FRAMES runs): '?' status report,
- * '!' feed hold, '~' resume, 0x18 abort.
+ * Commands: $I | HELLO (version and limits), $J (the job), the job commands of job.h,
+ * RUN, RESUME k. Real-time bytes on the host link (outside FRAMES runs; during a G-code
+ * run on the host link only between lines, so that machine chatter cannot carry one):
+ * '?' status report, '!' feed hold, '~' resume, 0x18 abort ('!', '~', 0x18 also go to a
+ * grbl on the machine link, whose own real-time bytes they are).
  *
  * RUN validates the job (path_init) and streams it:
- *   GCODE   "G21 G90 G17" then one "G1 X.. Y.. Z.. [F..]" per point, 4 decimals,
- *           optionally "N<n> ... *<cs>" (CHECKSUM ON). The firmware is the sender: it
- *           keeps the bytes of unacknowledged lines <= RXBUF (grbl character
- *           counting) and consumes one "ok" per line from the machine; "error:..." or
- *           "ALARM:..." from the machine stops the job (error:19); "Resend: n"
- *           regenerates from line n (checksum mode). Then "ok" (or "error:N").
- *   FRAMES  binary frames (frame.h): BEGIN, one POINT per point, END, with a window
- *           of OUT_FRAMES_WINDOW unacknowledged frames, go-back-N on NAK or timeout; the
- *           host answers with ACK/NAK/ABORT/HOLD/GO frames. Then the text line "ok"
- *           (or an END frame with the status and the text "error:N ...").
+ *   GCODE   a complete program for the job's MACHINE dialect (out_gcode.h) down the
+ *           LINK: the machine link (two links: "[RUN:...]" and the final reply go to
+ *           the host, the program and nothing else to the machine) or the host link (a
+ *           host that takes the G-code itself: "[RUN:...]", the program, then the reply,
+ *           on one line). The firmware is the sender: it keeps the bytes of unanswered
+ *           lines <= the machine's RX buffer (grbl character counting) and takes one
+ *           answer per line, parsed by dialect (machine.h); an error or alarm from the
+ *           machine stops the job: "error:19 machine reported an error (machine
+ *           ALARM:9)". Then "ok" (or "error:N").
+ *   FRAMES  binary frames (frame.h) on the host link: BEGIN, one POINT per point, END,
+ *           with a window of OUT_FRAMES_WINDOW unacknowledged frames, go-back-N on NAK or
+ *           timeout; the host answers with ACK/NAK/ABORT/HOLD/GO frames. Then the text
+ *           line "ok" (or an END frame with the status and the text "error:N ...").
  * Points are regenerated from the toolpath iterator on every retransmission: no
  * history buffer, and a stream is byte-identical on every target.
  *
- * proto.c keeps the link, the line assembly, the commands, the real-time bytes and the
+ * Pass-through (two links, idle): a host line that is not one of the firmware's commands
+ * goes to the machine as it is ($H, $X, a jog, M3 S1000); the machine's lines come back up
+ * as they are until its answer (ok, error:, Error:), and host bytes wait meanwhile (at
+ * most OUT_GCODE_PEER_TIMEOUT_MS of machine silence: then error:22). Other machine lines
+ * reach the host as "[MACHINE:<line>]".
+ *
+ * proto.c keeps the links, the line assembly, the commands, the real-time bytes and the
  * replies; each output format is its own module (out_gcode.h, out_frames.h; out.h has
  * what they share), called directly at one switch on the format per seam: start a run,
  * emit the next item, take what the peer sends, finish the run.
@@ -37,6 +49,7 @@
 #include "cp_types.h"
 #include "hal_uart.h"
 #include "job.h"
+#include "machine.h"
 #include "out.h"
 #include "out_frames.h"
 #include "out_gcode.h"
@@ -56,8 +69,13 @@
 enum proto_state { PROTO_IDLE = 0, PROTO_RUN = 1, PROTO_HOLD = 2 };
 
 struct proto_cfg {
-    const struct hal_uart *uart; /* the serial port; must stay valid while in use */
+    const struct hal_uart *uart;    /* the host link; must stay valid while in use */
+    const struct hal_uart *machine; /* the machine link (LINK MACHINE), NULL: the port has
+                                       one link only */
 };
+
+/* Bytes of a machine's error or alarm line quoted in the host's reply. */
+#define PROTO_FAULT_MAX 32u
 
 /* The engine. No pointer into itself (a copy is a snapshot: tests/fuzz_run.c). */
 struct proto {
@@ -93,10 +111,21 @@ struct proto {
 
     /* after a FRAMES run (outlives it): late host frames among the next text */
     struct out_frames_tail tail;
+
+    /* the machine link: the program of a LINK MACHINE run and the machine's answers; while
+     * idle, a host line that is not a command passes through to the machine */
+    struct machine_link mach;
+    uint8_t prog_link;       /* enum job_link of the current (or last) run */
+    uint8_t pass;            /* 1: a passed-through host line waits for the machine's answer
+                                (no host byte is consumed meanwhile) */
+    uint8_t fault_len;       /* bytes in fault[] */
+    char fault[PROTO_FAULT_MAX]; /* the machine's line that stopped the last run */
+    uint32_t t_pass;         /* ms of the pass-through line, or of the machine's last line */
 };
 
 /* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or
- * cfg->uart (or one of its three calls) is NULL. Nothing is transmitted. */
+ * cfg->uart (or one of its three calls) is NULL, or cfg->machine is given with a NULL
+ * call. Nothing is transmitted. */
 CP_MUST_CHECK int proto_init(struct proto *p, const struct proto_cfg *cfg);
 
 /* Do one bounded slice of work: flush pending output, consume received bytes (at

@@ -20,7 +20,7 @@ static struct proto proto;
 
 int main(void)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     hal_uart_cmsdk_init(&uart0, &uart);
     cfg.uart = &uart;
     for (;;) {

@@ -46,7 +46,7 @@ static int usage(void)
 
 int main(int argc, char **argv)
 {
-    struct proto_cfg cfg;
+    struct proto_cfg cfg = {0};
     const char *tty = NULL, *link = NULL;
     int fd = 0, i, r;
 

@@ -1,0 +1,207 @@
+/* machine.c - machine dialects, answers and the machine link (machine.h).
+ * SPDX-License-Identifier: MIT
+ */
+#include "machine.h"
+#include "parse.h"
+
+static const struct machine_dialect dialects[JOB_MACHINES] = {
+#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END)                   \
+    [JOB_MACHINE_##NAME] = {RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END},
+#include "machines.def"
+#undef CP_MACHINE
+};
+
+const struct machine_dialect *machine_dialect(unsigned m)
+{
+    return &dialects[m < (unsigned)JOB_MACHINES ? m : (unsigned)JOB_MACHINE_GENERIC];
+}
+
+/* 1 if line[0..len) starts with the NUL-terminated w. */
+static int starts(const char *line, size_t len, const char *w)
+{
+    size_t i = 0;
+    while (w[i] != '\0') {
+        if (i >= len || line[i] != w[i]) {
+            return 0;
+        }
+        i++;
+    }
+    return 1;
+}
+
+/* 1 if line[0..len) contains the NUL-terminated w (len and w are short: a line). */
+static int contains(const char *line, size_t len, const char *w)
+{
+    size_t i;
+    for (i = 0; i < len; i++) {
+        if (starts(line + i, len - i, w)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* "Resend: n" / "Resend:n" / "rs n" (and Marlin's "rs N<n>"): the number after the prefix;
+ * UINT32_MAX when none parses (a line never sent: the run stops). */
+static uint32_t resend_number(const char *s, size_t len)
+{
+    uint32_t n = 0;
+    size_t a = 0, b;
+    while (a < len && (s[a] == ' ' || s[a] == 'N')) {
+        a++;
+    }
+    b = a;
+    while (b < len && s[b] >= '0' && s[b] <= '9') {
+        b++;
+    }
+    if (b == a || parse_uint(s + a, b - a, UINT32_MAX, &n) != CP_ST_OK) {
+        return UINT32_MAX;
+    }
+    return n;
+}
+
+enum machine_reply machine_reply(unsigned m, const char *line, size_t len, uint32_t *num)
+{
+    *num = 0u;
+    if (len == 2u && starts(line, len, "ok")) {
+        return MACHINE_OK;
+    }
+    /* Marlin's ok carries ADVANCED_OK's " N<n> P<p> B<b>" or a temperature report; grbl's
+     * is the whole line, and grbl sends no other line starting "ok " */
+    if (m != (unsigned)JOB_MACHINE_GRBL && starts(line, len, "ok ")) {
+        return MACHINE_OK;
+    }
+    if (starts(line, len, "error:")) {
+        return MACHINE_ERROR;
+    }
+    if (starts(line, len, "ALARM:") || starts(line, len, "!!")) {
+        return MACHINE_ALARM;
+    }
+    if (starts(line, len, "Error:")) {
+        /* Marlin's line-number and checksum errors end "Last Line: n" and a Resend
+         * follows; any other Error: (kill(), MINTEMP, ...) stops the machine */
+        return contains(line, len, "Last Line") ? MACHINE_RETRY : MACHINE_ERROR;
+    }
+    if (starts(line, len, "Resend:")) {
+        *num = resend_number(line + 7, len - 7u);
+        return MACHINE_RESEND;
+    }
+    if (starts(line, len, "rs ")) {
+        *num = resend_number(line + 3, len - 3u);
+        return MACHINE_RESEND;
+    }
+    if (starts(line, len, "echo:busy:") || starts(line, len, "busy:") ||
+        (len >= 2u && line[0] == '<' && line[len - 1u] == '>')) {
+        return MACHINE_ALIVE;
+    }
+    if (starts(line, len, "Grbl ") || (len == 5u && starts(line, len, "start"))) {
+        return MACHINE_RESET;
+    }
+    return MACHINE_OTHER;
+}
+
+void machine_link_init(struct machine_link *l, const struct hal_uart *uart)
+{
+    l->uart = uart;
+    l->rx_len = l->rx_pos = 0u;
+    l->last_cr = l->cut = l->done = 0u;
+    l->line_len = 0u;
+    l->tx_len = l->tx_pos = 0u;
+}
+
+int machine_link_flush(struct machine_link *l)
+{
+    int n;
+    if (l->uart == NULL || l->tx_pos >= l->tx_len) {
+        return 0;
+    }
+    n = hal_uart_write(l->uart, l->tx + l->tx_pos, (size_t)(l->tx_len - l->tx_pos));
+    if (n < 0) {
+        return CP_ERR_IO;
+    }
+    l->tx_pos = (uint16_t)(l->tx_pos + (uint16_t)n);
+    if (l->tx_pos == l->tx_len) {
+        l->tx_pos = l->tx_len = 0u;
+    }
+    return n > 0;
+}
+
+size_t machine_link_room(struct machine_link *l)
+{
+    if (l->tx_pos > 0u) { /* compact the unsent tail to the front */
+        uint16_t i, k = (uint16_t)(l->tx_len - l->tx_pos);
+        for (i = 0; i < k; i++) {
+            l->tx[i] = l->tx[l->tx_pos + i];
+        }
+        l->tx_len = k;
+        l->tx_pos = 0u;
+    }
+    return (size_t)(MACHINE_TX_BUF - l->tx_len);
+}
+
+void machine_link_put(struct machine_link *l, const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n && l->tx_len < MACHINE_TX_BUF; i++) {
+        l->tx[l->tx_len++] = (uint8_t)s[i];
+    }
+}
+
+/* Remove the spaces at both ends of line[]. */
+static void line_trim(struct machine_link *l)
+{
+    uint16_t a = 0, b = l->line_len, i;
+    while (a < b && l->line[a] == ' ') {
+        a++;
+    }
+    while (b > a && l->line[b - 1u] == ' ') {
+        b--;
+    }
+    for (i = a; i < b && a > 0u; i++) {
+        l->line[i - a] = l->line[i];
+    }
+    l->line_len = (uint16_t)(b - a);
+}
+
+int machine_link_line(struct machine_link *l)
+{
+    if (l->uart == NULL) {
+        return 0;
+    }
+    if (l->done) { /* the last call returned a line: start the next */
+        l->line_len = 0u;
+        l->cut = 0u;
+        l->done = 0u;
+    }
+    if (l->rx_pos == l->rx_len) {
+        int n = hal_uart_read(l->uart, l->rx, sizeof l->rx);
+        if (n < 0) {
+            return CP_ERR_IO;
+        }
+        l->rx_len = (uint8_t)n;
+        l->rx_pos = 0u;
+    }
+    while (l->rx_pos < l->rx_len) { /* <= MACHINE_RX_CHUNK */
+        uint8_t c = l->rx[l->rx_pos++];
+        if (c == '\n' || c == '\r') {
+            int skip = c == '\n' && l->last_cr;
+            l->last_cr = (uint8_t)(c == '\r');
+            if (!skip) {
+                line_trim(l);
+                l->done = 1u;
+                return 1;
+            }
+            continue;
+        }
+        l->last_cr = 0u;
+        if (c < 0x20u || c > 0x7Eu) {
+            continue; /* line noise: dropped */
+        }
+        if (l->line_len >= MACHINE_LINE_MAX - 1u) {
+            l->cut = 1u;
+            continue;
+        }
+        l->line[l->line_len++] = (char)c;
+    }
+    return 0;
+}
