@@ -67,8 +67,11 @@ void sim_out_gcode(const char *body)
     if (out_gc == NULL) {
         return;
     }
-    if (strncmp(body, "G21", 3) == 0) {
-        gc_pre();
+    /* one file for every RUN of the session: each program's end but the last would stop
+     * an interpreter (rs274 reads nothing after M2), so the ends are left out and the
+     * file gets one M2 when it closes; each program begins with its rapid to the safe
+     * height, so no feed move joins two RUNs */
+    if (strcmp(body, "M2") == 0 || strcmp(body, "M30") == 0 || strcmp(body, "M400") == 0) {
         return;
     }
     gc_pre();

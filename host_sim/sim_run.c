@@ -324,8 +324,8 @@ static void run_machine_line(struct run *u, char *s, unsigned mlen)
         *star = '\0';
         body = strchr(s, ' ') + 1;
     }
-    if (strcmp(body, "G21 G90 G17") == 0) {
-        u->preamble++;
+    if (strncmp(body, "G1 ", 3) != 0 && strchr("GM", body[0]) != NULL && body[0] != '\0') {
+        u->preamble++; /* the program around the points: modes, spindle, rapids, end */
         sim_out_gcode(body);
     } else if (run_parse_g1(body, xyz) == 0) {
         uint32_t k = (r->header ? r->first : 0u) + (uint32_t)u->g1;
