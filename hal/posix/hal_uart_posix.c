@@ -149,9 +149,23 @@ int hal_uart_posix_raw(int fd)
     return tcsetattr(fd, TCSANOW, &t) == 0 ? CP_OK : CP_ERR_IO;
 }
 
-int hal_uart_posix_wait(struct hal_uart_posix *p, int timeout_ms)
+/* The event that makes progress on p likely (hal_uart_posix_wait). */
+static void wait_event(const struct hal_uart_posix *p, struct pollfd *pf)
 {
-    struct pollfd pf;
+    if (p->tx_short) {
+        pf->fd = p->wfd;
+        pf->events = POLLOUT;
+    } else {
+        pf->fd = p->rfd;
+        pf->events = POLLIN;
+    }
+    pf->revents = 0;
+}
+
+int hal_uart_posix_wait(struct hal_uart_posix *p, struct hal_uart_posix *q, int timeout_ms)
+{
+    struct pollfd pf[2];
+    nfds_t n = 1;
     int r;
     if (timeout_ms < 0) {
         timeout_ms = 0;
@@ -159,15 +173,12 @@ int hal_uart_posix_wait(struct hal_uart_posix *p, int timeout_ms)
     if (timeout_ms > 60000) {
         timeout_ms = 60000;
     }
-    if (p->tx_short) {
-        pf.fd = p->wfd;
-        pf.events = POLLOUT;
-    } else {
-        pf.fd = p->rfd;
-        pf.events = POLLIN;
+    wait_event(p, &pf[0]);
+    if (q != NULL && !q->hup) {
+        wait_event(q, &pf[1]);
+        n = 2;
     }
-    pf.revents = 0;
-    r = poll(&pf, 1, timeout_ms);
+    r = poll(pf, n, timeout_ms);
     if (r < 0) {
         return errno == EINTR ? 0 : CP_ERR_IO;
     }

@@ -40,12 +40,13 @@ int hal_uart_posix_init(struct hal_uart_posix *p, struct hal_uart *u, int rfd, i
  * which is left unchanged) or CP_ERR_IO. */
 int hal_uart_posix_raw(int fd);
 
-/* Sleep until the link is likely to make progress, at most timeout_ms (0..60000):
- * the write side becomes writable if the last write was short (the engine cannot
- * consume input before its output drains), else the read side becomes readable
- * or hangs up. Returns 1 if a descriptor is ready, 0 on timeout or signal,
- * CP_ERR_IO if poll(2) fails. Never busy-waits. */
-int hal_uart_posix_wait(struct hal_uart_posix *p, int timeout_ms);
+/* Sleep until a link is likely to make progress, at most timeout_ms (0..60000): for p
+ * and for q (a second port, the machine link; NULL or hung up: none) the write side
+ * becomes writable if its last write was short (the engine cannot consume input before
+ * its output drains), else the read side becomes readable or hangs up. Returns 1 if a
+ * descriptor is ready, 0 on timeout or signal, CP_ERR_IO if poll(2) fails. Never
+ * busy-waits. */
+int hal_uart_posix_wait(struct hal_uart_posix *p, struct hal_uart_posix *q, int timeout_ms);
 
 /* Restore the descriptors' original file status flags (does not close them). */
 void hal_uart_posix_close(struct hal_uart_posix *p);

@@ -1,7 +1,7 @@
 /* main_posix.c - firmware entry of the native build (build/host/fw_native).
  * SPDX-License-Identifier: MIT
  *
- * Usage: fw_native [--tty PATH | --pty LINK]
+ * Usage: fw_native [--tty PATH | --pty LINK] [--machine-tty PATH | --machine-fd N]
  *   default      serve the protocol on fd 0 (read and write; the pty slave that
  *                host_sim dup2()s to 0 and 1). The terminal mode is left alone:
  *                host_sim puts the pty in raw mode from the master side.
@@ -11,6 +11,11 @@
  *                serve on the master: any serial client (pyserial, a sender) opens
  *                LINK. The slave is kept open, so clients may come and go; this mode
  *                ends only on a signal.
+ *   --machine-tty PATH   the machine link (proto.h "two links"): open PATH, raw mode;
+ *                a grbl, Marlin or LinuxCNC serial port, or a pty a simulator serves
+ *   --machine-fd N       the machine link on an inherited descriptor N (read and
+ *                write; host_sim passes its second pty's slave as fd 3)
+ *                Without either, the port has one link (LINK MACHINE answers error:42).
  *
  * Owns the single protocol engine (file-scope state is allowed in hal/ only).
  * Loop: proto_poll() while it makes progress; when idle, sleep in poll(2) on the
@@ -34,27 +39,37 @@
 /* Longest sleep while idle, ms. Bounds the latency of a timer-driven event. */
 #define FW_IDLE_MS 50
 
-static struct hal_uart_posix port;
-static struct hal_uart uart;
+static struct hal_uart_posix port, mport;
+static struct hal_uart uart, muart;
 static struct proto proto;
 
 static int usage(void)
 {
-    fprintf(stderr, "usage: fw_native [--tty PATH | --pty LINK]\n");
+    fprintf(stderr, "usage: fw_native [--tty PATH | --pty LINK] [--machine-tty PATH | "
+                    "--machine-fd N]\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
     struct proto_cfg cfg = {0};
-    const char *tty = NULL, *link = NULL;
-    int fd = 0, i, r;
+    const char *tty = NULL, *link = NULL, *mtty = NULL;
+    int fd = 0, mfd = -1, i, r;
 
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--tty") == 0 && i + 1 < argc) {
             tty = argv[++i];
         } else if (strcmp(argv[i], "--pty") == 0 && i + 1 < argc) {
             link = argv[++i];
+        } else if (strcmp(argv[i], "--machine-tty") == 0 && i + 1 < argc) {
+            mtty = argv[++i];
+        } else if (strcmp(argv[i], "--machine-fd") == 0 && i + 1 < argc) {
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end != '\0' || v < 0 || v > 1023) {
+                return usage();
+            }
+            mfd = (int)v;
         } else {
             return usage();
         }
@@ -98,6 +113,20 @@ int main(int argc, char **argv)
         return 2;
     }
     cfg.uart = &uart;
+    if (mtty != NULL) {
+        mfd = open(mtty, O_RDWR | O_NOCTTY);
+        if (mfd < 0 || hal_uart_posix_raw(mfd) != CP_OK) {
+            perror(mtty);
+            return 2;
+        }
+    }
+    if (mfd >= 0) {
+        if (hal_uart_posix_init(&mport, &muart, mfd, mfd) != CP_OK) {
+            fprintf(stderr, "fw_native: cannot use machine fd %d\n", mfd);
+            return 2;
+        }
+        cfg.machine = &muart;
+    }
     if (proto_init(&proto, &cfg) != CP_OK) {
         fprintf(stderr, "fw_native: proto_init failed\n");
         return 2;
@@ -107,7 +136,7 @@ int main(int argc, char **argv)
         if (r < 0) {
             break; /* CP_ERR_IO: the link is gone */
         }
-        if (r == 0 && hal_uart_posix_wait(&port, FW_IDLE_MS) < 0) {
+        if (r == 0 && hal_uart_posix_wait(&port, mfd >= 0 ? &mport : NULL, FW_IDLE_MS) < 0) {
             break;
         }
     }

@@ -1,0 +1,443 @@
+/* test_machine.c - two links and machine dialects over two in-memory HALs: the program
+ * each dialect gets (complete, nothing the machine would reject), the machine's answers
+ * parsed by dialect (ADVANCED_OK, busy, chatter with real-time bytes, errors with the
+ * machine's code in the host's reply), pass-through while idle, the poll of a silent grbl.
+ * Each test names the defect of issue 17 it guards against.
+ * SPDX-License-Identifier: MIT
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "hal_mem.h"
+#include "proto.h"
+#include "test.h"
+
+struct link_end {
+    struct hal_mem m;
+    struct hal_uart u;
+    size_t scan; /* bytes of m.out already taken as lines */
+};
+
+static struct {
+    struct link_end host, mach;
+    struct proto p;
+} rg;
+
+/* Start an engine: with a machine link (two) or without (one). */
+static int rig(int two)
+{
+    struct proto_cfg cfg = {0};
+    memset(&rg, 0, sizeof rg);
+    hal_mem_init(&rg.host.m, &rg.host.u);
+    hal_mem_init(&rg.mach.m, &rg.mach.u);
+    rg.host.m.tick_ms = 1;
+    cfg.uart = &rg.host.u;
+    cfg.machine = two ? &rg.mach.u : NULL;
+    return proto_init(&rg.p, &cfg) == CP_OK;
+}
+
+static void send_to(struct link_end *e, const char *s)
+{
+    if (e->m.in_pos == e->m.in_len) {
+        e->m.in_pos = e->m.in_len = 0;
+    }
+    (void)hal_mem_feed_str(&e->m, s);
+}
+
+/* The next complete line e received (no '\n'), within `polls` polls; 0 if none. */
+static int line_of(struct link_end *e, char *buf, size_t cap, int polls)
+{
+    int i;
+    for (i = 0; i <= polls; i++) {
+        size_t k;
+        for (k = e->scan; k < e->m.out_len; k++) {
+            if (e->m.out[k] == '\n') {
+                size_t n = k - e->scan < cap - 1u ? k - e->scan : cap - 1u;
+                memcpy(buf, e->m.out + e->scan, n);
+                buf[n] = '\0';
+                e->scan = k + 1u;
+                return 1;
+            }
+        }
+        (void)proto_poll(&rg.p);
+    }
+    return 0;
+}
+
+/* A command on the host link; 1 if its final reply is `want` ("ok" or an "error:N" prefix). */
+static int cmd(const char *c, const char *want)
+{
+    char l[200];
+    send_to(&rg.host, c);
+    send_to(&rg.host, "\n");
+    while (line_of(&rg.host, l, sizeof l, 2000)) {
+        if (l[0] == '[' || l[0] == '<') {
+            continue;
+        }
+        if (strncmp(l, want, strlen(want)) == 0) {
+            return 1;
+        }
+        printf("  \"%s\" -> \"%s\", want \"%s\"\n", c, l, want);
+        return 0;
+    }
+    printf("  \"%s\": no reply\n", c);
+    return 0;
+}
+
+static const char *const paper[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",
+                                    "LINES 3 -25 10",        "STEPS 40",
+                                    "SAFE 30",               NULL};
+
+static int load(const char *const *c)
+{
+    for (; *c != NULL; c++) {
+        if (!cmd(*c, "ok")) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Send RUN and poll until the run has started (its "[RUN:" header is on the host link). */
+static int start_run(void)
+{
+    int i;
+    send_to(&rg.host, "RUN\n");
+    for (i = 0; i < 100 && rg.p.state == PROTO_IDLE; i++) {
+        (void)proto_poll(&rg.p);
+    }
+    return rg.p.state != PROTO_IDLE;
+}
+
+/* What the machine link carried during one run, as a real machine would judge it. */
+struct program {
+    unsigned lines, g1, g0, feeds, max_len, bad;
+    int spindle_on_before_cut, ended_safe, retract_after_cut, modes_first;
+    char first[200], last[200], first_bad[200];
+    char fwords[8][24]; /* the first F words, in order */
+};
+
+static void note_bad(struct program *pr, const char *l)
+{
+    if (pr->bad++ == 0u) {
+        snprintf(pr->first_bad, sizeof pr->first_bad, "%s", l);
+    }
+}
+
+/* Play a machine on the machine link until the host gets its final reply: answer each
+ * line with `ok_text` after `lag` lines; record the program. Returns the host's final
+ * reply line in `final`. */
+static int play_machine(struct program *pr, const char *ok_text, int lag, char *final, size_t cap)
+{
+    char l[200];
+    int pending = 0, i;
+    memset(pr, 0, sizeof *pr);
+    for (i = 0; i < 400000; i++) {
+        size_t n;
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            n = strlen(l);
+            pr->lines++;
+            pending++;
+            if (n > pr->max_len) {
+                pr->max_len = (unsigned)n;
+            }
+            if (pr->lines == 1u) {
+                snprintf(pr->first, sizeof pr->first, "%s", l);
+            }
+            snprintf(pr->last, sizeof pr->last, "%s", l);
+            if (l[0] == '[' || l[0] == '<' || strncmp(l, "ok", 2) == 0 || strchr(l, '*') != NULL) {
+                note_bad(pr, l); /* grbl: error:1 / error:2 (PROTOCOL-NOTES §8) */
+            }
+            if (l[0] == 'N' && strchr(l, ' ') != NULL) { /* N<n> <line>*<cs>: the line */
+                memmove(l, strchr(l, ' ') + 1, strlen(strchr(l, ' ') + 1) + 1u);
+            }
+            if (strncmp(l, "G1 ", 3) == 0) {
+                const char *f = strstr(l, " F");
+                pr->g1++;
+                if (f != NULL) {
+                    if (pr->feeds < 8u) {
+                        snprintf(pr->fwords[pr->feeds], sizeof pr->fwords[0], "%s", f + 1);
+                    }
+                    pr->feeds++;
+                } else if (pr->g1 == 1u) {
+                    note_bad(pr, l); /* grbl error:22: the first feed move has no F */
+                }
+            } else if (strncmp(l, "G0 ", 3) == 0) {
+                pr->g0++;
+            }
+        }
+        while (pending > lag) {
+            send_to(&rg.mach, ok_text);
+            pending--;
+        }
+        if (line_of(&rg.host, final, cap, 0) && final[0] != '[') {
+            return 1;
+        }
+        (void)proto_poll(&rg.p);
+        if (rg.p.run.next >= rg.p.run.end) {
+            lag = 0; /* everything sent: answer what is left */
+        }
+    }
+    return 0;
+}
+
+/* Issue 17: "[RUN:...]" and the firmware's own "ok" reached grbl (error:1, error:2), no F
+ * (error:22), no preamble, safe moves or program end. Two links, MACHINE GRBL: the
+ * machine link carries exactly a complete grbl program. */
+int test_machine_grbl_program(void)
+{
+    struct program pr;
+    char fin[200], hdr[200];
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE GRBL", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("SPINDLE 12000", "ok"));
+    CHECK(cmd("WCS G55", "ok"));
+    CHECK(cmd("FEED 600 100 300", "ok"));
+    send_to(&rg.host, "RUN\n");
+    CHECK(line_of(&rg.host, hdr, sizeof hdr, 100));
+    CHECK(strncmp(hdr, "[RUN:points=", 12) == 0); /* the metadata: host link only */
+    CHECK(play_machine(&pr, "ok\n", 3, fin, sizeof fin));
+    CHECK(strcmp(fin, "ok") == 0);
+    if (pr.bad) {
+        printf("  grbl would reject \"%s\"\n", pr.first_bad);
+    }
+    CHECK_EQ_INT(pr.bad, 0);
+    CHECK(strcmp(pr.first, "G21 G90 G17 G94 G55") == 0);
+    CHECK(strcmp(pr.last, "M2") == 0);
+    CHECK_EQ_INT(pr.g1, path_count(&rg.p.path)); /* one feed move per point */
+    CHECK_EQ_INT(pr.g0, 3u); /* safe Z, above the first point, the retract */
+    CHECK(pr.max_len <= 79u); /* grbl's LINE_BUFFER_SIZE */
+    /* modal F: the plunge's, the cut's, then link feed and cut feed in turn, never repeated */
+    CHECK(strcmp(pr.fwords[0], "F100") == 0 && strcmp(pr.fwords[1], "F600") == 0 &&
+          strcmp(pr.fwords[2], "F300") == 0 && strcmp(pr.fwords[3], "F600") == 0);
+    CHECK_EQ_INT(pr.feeds, 2u + 2u * (rg.p.path.info.n - 1u));
+    printf("  note: grbl program: %u lines, %u feed moves, %u F words, longest %u chars\n",
+           pr.lines, pr.g1, pr.feeds, pr.max_len);
+    return 0;
+}
+
+/* Marlin: one command per line ("G21 G90" would leave G90 unset), N and * with M110 first,
+ * M400 as the end, ADVANCED_OK's "ok N.. P.. B.." understood (it once timed out). */
+int test_machine_marlin_program(void)
+{
+    struct program pr;
+    char fin[200], hdr[200];
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE MARLIN", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("CHECKSUM ON", "ok"));
+    CHECK(cmd("FEED 0.05", "ok"));
+    send_to(&rg.host, "RUN\n");
+    CHECK(line_of(&rg.host, hdr, sizeof hdr, 100));
+    CHECK(play_machine(&pr, "ok N2 P15 B3\n", 2, fin, sizeof fin));
+    CHECK(strcmp(fin, "ok") == 0);
+    CHECK(strncmp(pr.first, "N0 M110 N0*", 11) == 0);
+    CHECK(strstr(pr.last, " M400*") != NULL);
+    CHECK(pr.max_len <= 95u); /* Marlin's MAX_CMD_SIZE */
+    CHECK(strncmp(pr.fwords[0], "F0.05*", 6) == 0);
+    CHECK_EQ_INT(pr.feeds, 1u); /* plunge, cut and links at 0.05: one F, exact */
+    CHECK_EQ_INT(pr.g1, path_count(&rg.p.path));
+    return 0;
+}
+
+/* Marlin's "echo:busy: processing" every 2 s keeps a long M400 alive past the 10 s
+ * answer timeout (it once held the run, then timed out); a silent one times out. */
+int test_machine_busy_keepalive(void)
+{
+    char l[200];
+    int i, busy = 0, lines = 0;
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE MARLIN", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cmd("STEPS 1", "ok"));
+    CHECK(cmd("LINES 1 0 0", "ok"));
+    rg.host.m.tick_ms = 5;
+    CHECK(start_run());
+    for (i = 0; i < 200000 && rg.p.state != PROTO_IDLE; i++) {
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            lines++;
+            if (strcmp(l, "M400") != 0) {
+                send_to(&rg.mach, "ok\n");
+            }
+        }
+        if (rg.host.m.now / 2000u > (uint32_t)busy) { /* the keep-alive, every 2 s */
+            busy++;
+            send_to(&rg.mach, "echo:busy: processing\n");
+        }
+        if (busy == 15) { /* 30 s of M400: the moves end, its ok */
+            send_to(&rg.mach, "ok\n");
+            busy++;
+        }
+        (void)proto_poll(&rg.p);
+    }
+    CHECK(rg.host.m.now > 30000u);
+    while (line_of(&rg.host, l, sizeof l, 10) && l[0] == '[') {
+    }
+    CHECK(strcmp(l, "ok") == 0);
+    return 0;
+}
+
+/* A machine error stops the job with the machine's own code in the host's reply. */
+int test_machine_error_code(void)
+{
+    char l[200];
+    int i, n = 0;
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE GRBL", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("FEED 600", "ok"));
+    CHECK(start_run());
+    for (i = 0; i < 20000 && rg.p.state != PROTO_IDLE; i++) {
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            send_to(&rg.mach, ++n == 5 ? "ALARM:1\n" : "ok\n");
+        }
+        (void)proto_poll(&rg.p);
+    }
+    while (line_of(&rg.host, l, sizeof l, 10) && l[0] == '[') {
+    }
+    CHECK(strcmp(l, "error:19 machine reported an error (machine ALARM:1)") == 0);
+    return 0;
+}
+
+/* One link (the host takes the G-code): a '?' inside the machine's chatter is text, not
+ * a status request (echo:Unknown command: "M999?" once produced a report in the stream). */
+int test_machine_chatter_realtime(void)
+{
+    char l[200];
+    int i, reports = 0, done = 0;
+    CHECK(rig(0));
+    CHECK(load(paper));
+    CHECK(cmd("FEED 600", "ok"));
+    send_to(&rg.host, "RUN\n");
+    for (i = 0; i < 400000 && !done; i++) {
+        while (line_of(&rg.host, l, sizeof l, 0)) {
+            if (l[0] == '<') {
+                reports++;
+            } else if (strcmp(l, "ok") == 0 || strncmp(l, "error:", 6) == 0) {
+                done = 1;
+                break;
+            } else if (l[0] == 'G' || l[0] == 'M') {
+                send_to(&rg.host, "echo:Unknown command: \"M999?\"\nok\n");
+            }
+        }
+        (void)proto_poll(&rg.p);
+    }
+    CHECK(done && strcmp(l, "ok") == 0);
+    CHECK_EQ_INT(reports, 0);
+    return 0;
+}
+
+/* Idle pass-through: "$H" reaches the machine, its answer comes back as it is; an
+ * unasked machine line comes up wrapped; host bytes wait while the machine answers. */
+int test_machine_pass_through(void)
+{
+    char l[200];
+    CHECK(rig(1));
+    send_to(&rg.host, "$H\n");
+    CHECK(line_of(&rg.mach, l, sizeof l, 100));
+    CHECK(strcmp(l, "$H") == 0);
+    send_to(&rg.host, "$X\n"); /* waits: the machine has not answered $H */
+    CHECK(!line_of(&rg.mach, l, sizeof l, 50));
+    send_to(&rg.mach, "[MSG:Homed]\nok\n");
+    CHECK(line_of(&rg.host, l, sizeof l, 100) && strcmp(l, "[MSG:Homed]") == 0);
+    CHECK(line_of(&rg.host, l, sizeof l, 100) && strcmp(l, "ok") == 0);
+    CHECK(line_of(&rg.mach, l, sizeof l, 100) && strcmp(l, "$X") == 0);
+    send_to(&rg.mach, "error:9\n");
+    CHECK(line_of(&rg.host, l, sizeof l, 100) && strcmp(l, "error:9") == 0);
+    send_to(&rg.mach, "Grbl 1.1h ['$' for help]\n");
+    CHECK(line_of(&rg.host, l, sizeof l, 100) &&
+          strcmp(l, "[MACHINE:Grbl 1.1h ['$' for help]]") == 0);
+    CHECK(cmd("$I", "ok")); /* the firmware's own commands stay its own */
+    /* a machine that never answers: the host gets error:22, then the link is free */
+    rg.host.m.tick_ms = 50;
+    send_to(&rg.host, "G0 X1\n");
+    CHECK(line_of(&rg.host, l, sizeof l, 2000) && strncmp(l, "error:22 ", 9) == 0);
+    CHECK(cmd("$I", "ok"));
+    /* one link: no pass-through, an unknown line is an error */
+    CHECK(rig(0));
+    CHECK(cmd("$H", "error:1 "));
+    return 0;
+}
+
+/* A silent grbl (a long move) is asked '?' after OUT_GCODE_POLL_MS; its status report
+ * keeps the run alive past the answer timeout. */
+int test_machine_grbl_poll(void)
+{
+    char l[200];
+    int i, polls = 0, lines = 0, held = 1;
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE GRBL", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("FEED 600", "ok"));
+    rg.host.m.tick_ms = 5;
+    CHECK(start_run());
+    for (i = 0; i < 100000 && rg.p.state != PROTO_IDLE; i++) {
+        size_t k;
+        for (k = rg.mach.scan; k < rg.mach.m.out_len; k++) {
+            if (rg.mach.m.out[k] == '?') { /* a real-time byte: not part of a line */
+                polls++;
+                memmove(rg.mach.m.out + k, rg.mach.m.out + k + 1, rg.mach.m.out_len - k - 1u);
+                rg.mach.m.out_len--;
+                send_to(&rg.mach, "<Run|MPos:1.000,2.000,3.000|FS:600,0>\n");
+                k--;
+            }
+        }
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            if (++lines > 3 && held && rg.host.m.now < 25000u) {
+                continue; /* a long move: no ok for 20 s */
+            }
+            send_to(&rg.mach, "ok\n");
+        }
+        if (held && rg.host.m.now >= 25000u) {
+            held = 0;
+            for (k = 3; k < (size_t)lines; k++) {
+                send_to(&rg.mach, "ok\n");
+            }
+        }
+        (void)proto_poll(&rg.p);
+    }
+    while (line_of(&rg.host, l, sizeof l, 10) && l[0] == '[') {
+    }
+    CHECK(strcmp(l, "ok") == 0);
+    CHECK(polls >= 5);
+    printf("  note: grbl polled %d times during a 20 s move\n", polls);
+    return 0;
+}
+
+/* LinuxCNC takes a program file: no acknowledgements, the link alone paces it. */
+int test_machine_linuxcnc(void)
+{
+    char l[200], fin[200];
+    unsigned g1 = 0;
+    int i;
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE LINUXCNC", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("FEED 600", "ok"));
+    send_to(&rg.host, "RUN\n");
+    CHECK(line_of(&rg.host, fin, sizeof fin, 100) && fin[0] == '[');
+    fin[0] = '\0';
+    for (i = 0; i < 200000 && fin[0] == '\0'; i++) {
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            g1 += strncmp(l, "G1 ", 3) == 0;
+        }
+        if (!line_of(&rg.host, fin, sizeof fin, 0)) {
+            fin[0] = '\0';
+        }
+    }
+    while (line_of(&rg.mach, l, sizeof l, 0)) {
+        g1 += strncmp(l, "G1 ", 3) == 0;
+    }
+    CHECK(strcmp(fin, "ok") == 0);
+    CHECK_EQ_INT(g1, path_count(&rg.p.path));
+    CHECK(strcmp(l, "M2") == 0);
+    return 0;
+}
