@@ -5,7 +5,8 @@
  * Usage: host_sim --target native|qemu --job FILE [--fw PATH] [--timeout-ms N]
  *                 [--log FILE] [--qemu PROGRAM] [--baud N] [--fault drop|flip|dup|hangup@N]
  *                 [--resume] [--csv FILE] [--gcode FILE] [--svg FILE] [--raw FILE]
- *                 [--min-util PCT] [--cmd PROGRAM [ARGS...]]
+ *                 [--min-util PCT] [--machine grbl|marlin] [--advanced-ok] [--homing]
+ *                 [--cmd PROGRAM [ARGS...]]
  * Exit status: 0 iff every check passed; 1 if a check failed; 2 on a usage or
  * set-up error; 130 after SIGINT (the firmware is always killed and reaped).
  * The last line of stdout is always "sim: N passed, N failed" (also on exit 2).
@@ -18,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "sim_cell.h"
 #include "sim_check.h"
 #include "sim_job.h"
 #include "sim_link.h"
@@ -192,6 +194,9 @@ struct sim_opts {
     int resume;
     const char *csv, *gcode, *svg, *raw;
     double min_util; /* percent; < 0: not checked */
+    /* --machine: a two-link cell, the emulated machine on the machine link (sim_cell.h) */
+    const char *machine; /* "grbl", "marlin" or NULL (one link) */
+    int advanced_ok, homing;
 };
 
 static struct sim_opts opt;
@@ -224,6 +229,10 @@ static struct {
 } rt;
 
 static FILE *raw_file;
+
+/* --machine: the cell's machine link and its emulated machine (one per session) */
+static struct sim_cell cell;
+static int cell_on, cell_started;
 
 /* Case-insensitive: does text start with the keyword kw as a whole token? */
 static int kw_is(const char *text, const char *kw)
@@ -285,6 +294,109 @@ static int parse_fault(struct sim_opts *o, const char *v)
     return -1;
 }
 
+static double byte_us(void)
+{
+    return opt.baud > 0.0 ? 1e7 / opt.baud : 0.0;
+}
+
+/* ---- the cell (--machine) ------------------------------------------------------------- */
+
+/* Pump the cell for ms (the machine's banner reaches the firmware while it is idle). */
+static void cell_idle(unsigned ms)
+{
+    uint64_t end = sim_link_now_us() + (uint64_t)ms * 1000u;
+    while (cell_on && sim_link_now_us() < end) {
+        if (sim_cell_pump(&cell, (double)sim_link_now_us(), byte_us()) <= 0) {
+            struct timespec ts = {0, 1000000L};
+            (void)nanosleep(&ts, NULL);
+        }
+    }
+}
+
+/* After the handshake: the firmware's program goes to the cell's machine in its dialect
+ * (MACHINE GRBL|MARLIN, LINK MACHINE; one check). 0, or -1. */
+static int cell_setup(struct sim_session *s)
+{
+    static const char *const lines[2][2] = {{"MACHINE GRBL\n", "LINK MACHINE\n"},
+                                            {"MACHINE MARLIN\n", "LINK MACHINE\n"}};
+    const char *const *l = lines[cell.kind == SIM_MACHINE_MARLIN];
+    struct sim_reply r;
+    int i, rc = 0, ok = 1;
+    sim_cell_release(&cell);
+    cell_idle(100);
+    for (i = 0; i < 2 && rc == 0; i++) {
+        rc = sim_run_send(&s->link, l[i], strlen(l[i]), byte_us(),
+                          sim_link_now_ms() + opt.timeout_ms);
+        if (rc == SIM_LINK_REPLY) {
+            rc = sim_link_await(&s->link, sim_link_now_ms() + opt.timeout_ms, &r, NULL, NULL);
+        }
+        ok = ok && rc == SIM_LINK_REPLY && !r.error;
+        rc = rc == SIM_LINK_REPLY ? 0 : rc;
+    }
+    check(ok, cell.kind == SIM_MACHINE_MARLIN ? "cell: MACHINE MARLIN, LINK MACHINE accepted"
+                                              : "cell: MACHINE GRBL, LINK MACHINE accepted",
+          "");
+    return ok ? 0 : -1;
+}
+
+/* --machine: "FORMAT FRAMES" lines of the job become "FORMAT GCODE" (FRAMES is a host-link
+ * format; the cell runs every job as a program on its machine). */
+static void cell_job(struct sim_job *j)
+{
+    size_t i;
+    for (i = 0; i < j->n; i++) {
+        if (kw_is(j->cmd[i].text, "FORMAT") && kw_is(arg1(j->cmd[i].text), "FRAMES")) {
+            strcpy(j->cmd[i].text, "FORMAT GCODE"); /* shorter than the line it replaces */
+            j->cmd[i].len = strlen(j->cmd[i].text);
+        }
+    }
+}
+
+/* The checks of one RUN on the cell: the machine accepted every line of it (no error, no
+ * alarm, no unknown command, no RX overflow, no feed move without F, no ignored word) and
+ * nothing of the program came up the host link. b: the verdict before the run. */
+static void cell_run_checks(const struct sim_job_cmd *c, const struct sim_machine_verdict *b,
+                            const struct sim_run_result *r)
+{
+    static char what[256];
+    struct sim_machine_verdict v;
+    sim_machine_verdict(cell.m, &v);
+    snprintf(what, sizeof what,
+             "line %d %s took the program: %lu lines, errors %lu, alarms %lu, unknown %lu, "
+             "RX overflows %lu, G1 without F %lu, ignored words %lu",
+             c->lineno, opt.machine, v.lines - b->lines, v.errors - b->errors, v.alarms - b->alarms,
+             v.unknown - b->unknown, v.rx_overflows - b->rx_overflows,
+             v.g1_without_feed - b->g1_without_feed, v.ignored_words - b->ignored_words);
+    check(v.errors == b->errors && v.alarms == b->alarms && v.unknown == b->unknown &&
+              v.rx_overflows == b->rx_overflows && v.g1_without_feed == b->g1_without_feed &&
+              v.ignored_words == b->ignored_words && v.lines > b->lines,
+          what, v.first_problem);
+    snprintf(what, sizeof what, "line %d nothing of the program on the host link", c->lineno);
+    check(r->host_program == 0, what, r->why);
+}
+
+/* The verdict on the whole conversation with the cell's machine (summary rows, checks). */
+static void cell_report(void)
+{
+    struct sim_machine_verdict v;
+    sim_machine_verdict(cell.m, &v);
+    printf("sim: cell machine %s: %lu lines, errors %lu, alarms %lu, unknown %lu, RX overflows "
+           "%lu, resends %lu, safe Z %.4f; machine link in %llu B, out %llu B\n",
+           opt.machine, v.lines, v.errors, v.alarms, v.unknown, v.rx_overflows, v.resends,
+           v.safe_z, cell.bytes_in, cell.bytes_out);
+    check(v.started_safe && v.units_mm && v.absolute,
+          "cell: the program starts safe (G21 G90 before any motion, a rapid to the safe "
+          "height first, no feed move above it)",
+          v.first_problem);
+    check(v.feed_before_safe == 0 && v.rapid_below_safe == 0 && v.feed_above_safe == 0,
+          "cell: no feed move before the safe height, no rapid across below it", v.first_problem);
+    check(v.ended_safe && v.program_end && v.spindle_off_at_end,
+          "cell: the program ends safe (retract to the safe height, M5 if on, program end)",
+          v.first_problem);
+    check(v.feed_spindle_off == 0, "cell: no feed move with the spindle off (when it is used)",
+          v.first_problem);
+}
+
 /* Create the pty, start the firmware and do the handshake (one check). */
 static int fw_start(struct sim_session *s)
 {
@@ -297,6 +409,11 @@ static int fw_start(struct sim_session *s)
         fprintf(stderr, "host_sim: %s\n", err);
         return -2;
     }
+    if (cell_on && cell_started && sim_cell_reopen(&cell, err, sizeof err) != 0) {
+        fprintf(stderr, "host_sim: %s\n", err); /* a restart: a fresh pty, the same machine */
+        return -2;
+    }
+    cell_started = 1;
     if (opt.target == SIM_QEMU) {
         s->cmd[8] = pty->path; /* -serial /dev/pts/N */
     }
@@ -322,6 +439,9 @@ static int fw_start(struct sim_session *s)
         print_limits(hs.opt);
     }
     sim_pty_release(pty); /* the firmware has the slave: a death now gives EIO */
+    if (cell_on && cell_setup(s) != 0) {
+        return -1;
+    }
     return 0;
 }
 
@@ -339,6 +459,7 @@ static void run_opts(struct sim_run_opts *o, int first_stream)
     memset(o, 0, sizeof *o);
     o->frames = js.frames;
     o->checksum = js.checksum;
+    o->cell = cell_on ? &cell : NULL;
     o->rxbuf = js.rxbuf;
     o->byte_us = opt.baud > 0.0 ? 1e7 / opt.baud : 0.0;
     o->fault = first_stream ? opt.fault : SIM_FAULT_NONE;
@@ -490,6 +611,11 @@ static const char *parse_value(struct sim_opts *o, const char *a, const char *v)
         if (parse_fault(o, v) != 0) {
             return "--fault must be drop|flip|dup|hangup@N";
         }
+    } else if (strcmp(a, "--machine") == 0) {
+        if (strcmp(v, "grbl") != 0 && strcmp(v, "marlin") != 0) {
+            return "--machine must be grbl or marlin";
+        }
+        o->machine = v;
     } else if (strcmp(a, "--timeout-ms") == 0) {
         unsigned long ms = strtoul(v, &e, 10);
         if (*e != '\0' || ms < 50 || ms > 600000) {
@@ -524,8 +650,11 @@ static const char *sim_parse_args(int argc, char **argv, struct sim_opts *o)
             o->target = SIM_CMD;
             break;
         }
-        if (strcmp(a, "--resume") == 0) {
-            o->resume = 1;
+        if (strcmp(a, "--resume") == 0 || strcmp(a, "--advanced-ok") == 0 ||
+            strcmp(a, "--homing") == 0) { /* the flags without a value */
+            o->resume |= strcmp(a, "--resume") == 0;
+            o->advanced_ok |= strcmp(a, "--advanced-ok") == 0;
+            o->homing |= strcmp(a, "--homing") == 0;
             i--;
             continue;
         }
@@ -592,6 +721,19 @@ static int sim_setup(struct sim_session *s)
         fprintf(stderr, "host_sim: %s: %s\n", opt.raw, strerror(errno));
         return -2;
     }
+    if (opt.machine != NULL) {
+        struct sim_machine_opts mo;
+        memset(&mo, 0, sizeof mo);
+        mo.kind = strcmp(opt.machine, "marlin") == 0 ? SIM_MACHINE_MARLIN : SIM_MACHINE_GRBL;
+        mo.advanced_ok = opt.advanced_ok;
+        mo.homing = opt.homing;
+        if (sim_cell_open(&cell, &mo, err, sizeof err) != 0) {
+            fprintf(stderr, "host_sim: %s\n", err);
+            return -2;
+        }
+        cell_on = 1;
+        cell_job(&s->job);
+    }
     if (sim_out_open(opt.csv, opt.gcode, opt.svg) != 0) {
         return -2;
     }
@@ -651,21 +793,25 @@ static void sim_command(struct sim_session *s)
         q[k++] = "shift=7";
         q[k++] = "-kernel";
         q[k++] = (char *)opt.fw;
+        if (cell_on) { /* the second -serial is UART1: the machine link */
+            q[k++] = "-serial";
+            q[k++] = cell.pty.path;
+        }
         q[k] = NULL;
         s->cmd = q;
     } else if (opt.target == SIM_NATIVE) {
-        q[0] = (char *)opt.fw;
-        q[1] = NULL;
+        q[k++] = (char *)opt.fw;
+        if (cell_on) {
+            q[k++] = "--machine-tty";
+            q[k++] = cell.pty.path;
+        }
+        q[k] = NULL;
         s->cmd = q;
     }
 }
 
 /* ---- the session ----------------------------------------------------------------------- */
 
-static double byte_us(void)
-{
-    return opt.baud > 0.0 ? 1e7 / opt.baud : 0.0;
-}
 
 /* After a hang-up in the first stream of job line i: a new firmware, the job's lines before
  * it again, then RESUME k with k = the first point not received intact. 1: resumed (r2
@@ -736,6 +882,10 @@ static int job_run(struct sim_session *s, size_t i, uint64_t t0, const char *esc
     int resumed = 0;
     uint32_t start_k =
         kw_is(c->text, "RESUME") ? (uint32_t)strtoul(arg1(c->text), NULL, 10) : 0u;
+    struct sim_machine_verdict before;
+    if (cell_on) {
+        sim_machine_verdict(cell.m, &before);
+    }
     run_opts(&o, 1);
     (void)sim_run_stream(&s->link, &o, &r1);
     run_account(&r1, byte_us());
@@ -756,6 +906,9 @@ static int job_run(struct sim_session *s, size_t i, uint64_t t0, const char *esc
         return 1;
     }
     run_checks(c, &r1, resumed ? &r2 : NULL, start_k);
+    if (cell_on) {
+        cell_run_checks(c, &before, resumed ? &r2 : &r1);
+    }
     e = resumed ? &r2 : &r1;
     if (e->rc != SIM_LINK_REPLY) {
         s->interrupted = e->rc == SIM_LINK_INTR;
@@ -982,6 +1135,9 @@ static void sim_report(struct sim_session *s)
     if (rt.runs > 0) {
         report_runs(written);
     }
+    if (cell_on) {
+        cell_report();
+    }
     printf("  %-18s %.2f\n", "handshake ms", (double)(s->t_hs - s->t_start) / 1000.0);
     printf("  %-18s %.2f\n", "elapsed ms", (double)(sim_link_now_us() - s->t_start) / 1000.0);
     sim_check_report(stdout, &checks.passed, &checks.failed);
@@ -1021,6 +1177,9 @@ int main(int argc, char **argv)
     }
     sim_job_free(&s.job);
     free(rtts);
+    if (cell_on) {
+        sim_cell_close(&cell);
+    }
     finish_line();
     if (s.interrupted || sim_stop) {
         return 130;

@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: MIT
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "frame.h"
+#include "sim_cell.h"
 #include "sim_check.h"
 #include "sim_out.h"
 #include "sim_run.h"
@@ -265,6 +267,25 @@ static void run_point(struct run *u, uint32_t k, const int32_t xyz[3], const int
     u->r->got++;
 }
 
+/* Two links: the machine's new feed moves are the run's points, in order (the program's
+ * plunge to the first point, then one G1 per point); rapids are its safe moves. Taken
+ * once the host link's "[RUN:...]" header has begun the run. */
+static void run_cell_moves(struct run *u)
+{
+    struct sim_machine_move mv;
+    while (u->began && sim_cell_next_move(u->o->cell, &mv)) {
+        int32_t xyz[3];
+        if (mv.rapid) {
+            continue;
+        }
+        xyz[0] = (int32_t)lround(mv.x * 1e4);
+        xyz[1] = (int32_t)lround(mv.y * 1e4);
+        xyz[2] = (int32_t)lround(mv.z * 1e4);
+        run_point(u, u->r->first + (uint32_t)u->g1, xyz, NULL, 0, 0);
+        u->g1++;
+    }
+}
+
 /* A machine line (not [..], not a terminal reply) of a GCODE run. */
 static void run_machine_line(struct run *u, char *s, unsigned mlen)
 {
@@ -373,6 +394,16 @@ static void run_gcode_line(struct run *u)
     }
     if (s[0] == '<') {
         return; /* status report */
+    }
+    if (u->o->cell != NULL) {
+        /* two links: the program goes to the machine link, nothing of it to the host */
+        u->r->host_program++;
+        if (u->r->why[0] == '\0') {
+            char esc[80];
+            sim_link_escape(s, n, esc, sizeof esc);
+            snprintf(u->r->why, sizeof u->r->why, "program line on the host link \"%s\"", esc);
+        }
+        return;
     }
     if (n == 0 && u->o->checksum) {
         return; /* Marlin skips empty lines without an answer (grbl answers ok) */
@@ -697,6 +728,7 @@ static void run_wait(struct run *u, double now)
     double wake = now + SIM_LINK_SLICE_MS * 1000.0;
     struct timeval tv;
     fd_set rd;
+    int nfds;
     if (u->ihead < u->ilen) {
         double d = dmax((double)u->ia[u->ihead], u->dlast) + u->o->byte_us;
         wake = d < wake ? d : wake;
@@ -704,14 +736,26 @@ static void run_wait(struct run *u, double now)
     if (u->qn > 0) {
         wake = u->q[u->qh].due < wake ? u->q[u->qh].due : wake;
     }
+    if (u->o->cell != NULL) {
+        double d = sim_cell_next_due(u->o->cell, u->o->byte_us);
+        wake = d < wake ? d : wake;
+        if (u->o->cell->olen > 0u) {
+            wake = now + 1000.0; /* replies the pty did not take: try again soon */
+        }
+    }
     if (wake <= now) {
         return;
     }
     FD_ZERO(&rd);
     FD_SET(u->l->pty->master, &rd);
+    nfds = u->l->pty->master + 1;
+    if (u->o->cell != NULL && u->o->cell->pty.master >= 0) {
+        FD_SET(u->o->cell->pty.master, &rd);
+        nfds = u->o->cell->pty.master >= nfds ? u->o->cell->pty.master + 1 : nfds;
+    }
     tv.tv_sec = 0;
     tv.tv_usec = (long)(wake - now) + 1;
-    (void)select(u->l->pty->master + 1, &rd, NULL, NULL, &tv);
+    (void)select(nfds, &rd, NULL, NULL, &tv);
 }
 
 /* Read, deliver and answer until the terminal reply (u->done) or an end of the link. */
@@ -721,6 +765,12 @@ static int run_loop(struct run *u)
     int rc = 0;
     while (!u->done) {
         double now = (double)sim_link_now_us();
+        if (u->o->cell != NULL) {
+            if (sim_cell_pump(u->o->cell, now, u->o->byte_us) > 0) {
+                u->t_last_rx = (uint64_t)now;
+            }
+            run_cell_moves(u);
+        }
         rc = run_deliver_due(u, now);
         if (rc < 0) {
             break;
@@ -781,6 +831,9 @@ static int run_end(struct run *u, int rc)
         }
     }
     r->rc = rc;
+    if (o->cell != NULL) {
+        run_cell_moves(u); /* every move the machine took before its last answer */
+    }
     if (u->began) {
         sim_check_run_end(u->done && !r->error);
     }

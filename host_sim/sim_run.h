@@ -19,6 +19,8 @@
 
 #include "sim_link.h"
 
+struct sim_cell;
+
 enum sim_fault { SIM_FAULT_NONE, SIM_FAULT_DROP, SIM_FAULT_FLIP, SIM_FAULT_DUP, SIM_FAULT_HANGUP };
 
 struct sim_run_opts {
@@ -31,6 +33,8 @@ struct sim_run_opts {
     unsigned timeout_ms;      /* silence bound */
     FILE *raw;                /* raw firmware -> host bytes of the run, or NULL */
     int progress;             /* progress line on stderr */
+    struct sim_cell *cell;    /* two links: the machine on the machine link (sim_cell.h),
+                                 whose feed moves are the points; NULL: one link */
 };
 
 struct sim_run_result {
@@ -53,6 +57,7 @@ struct sim_run_result {
     unsigned long bad_lines;  /* GCODE: lines failing N/checksum or unparsable */
     unsigned long naks, bad_frames, dup_frames, gap_frames, acks; /* FRAMES */
     unsigned long order_err;  /* FRAMES: POINT k not the expected one */
+    unsigned long host_program; /* two links: program lines that came up the host link */
     unsigned long end_points; /* FRAMES: END frame's count */
     int end_status;           /* FRAMES: END frame's status (-1: none) */
     char why[200];

@@ -11,8 +11,13 @@
 #   $(BUILD)/asan/      the unit tests (float build) with -fsanitize=address,undefined
 # Seeds: tests/corpus/<t>/ (read only: libFuzzer writes new inputs to $(BUILD)/fuzz/corpus/<t>).
 
-FUZZ_TARGETS := cmd num frame run
+# reply_<dialect>: tests/fuzz_reply.c built once per machine dialect (machines.def)
+FUZZ_DIALECTS := grbl marlin generic linuxcnc
+FUZZ_TARGETS := cmd num frame run $(patsubst %,reply_%,$(FUZZ_DIALECTS))
 FUZZ_SECONDS ?= 60
+# the reply_<dialect> targets run a count, not a time: at least 10^6 executions each in
+# `make fuzz` (~6000 exec/s: ~3 min each), 10^7 in a campaign (FUZZ_REPLY_RUNS=10000000)
+FUZZ_REPLY_RUNS ?= 1000000
 FUZZ_RUNS    ?= 20000
 # fuzz_run drives a whole FRAMES session per input (~600 exec/s): fewer runs keep
 # fuzz-check under a minute.
@@ -108,6 +113,11 @@ $(1)/tests/%.o: tests/%.c
 # the harnesses that decode the firmware's output call the copy (FUZZ_HFRAME)
 $(1)/tests/fuzz_cmd.o $(1)/tests/fuzz_run.o: FUZZ_HDEFS = $$(FUZZ_HFRAME)
 
+# the machine-answer target, one binary per dialect
+$(patsubst %,$(1)/tests/fuzz_reply_%.o,$(FUZZ_DIALECTS)): $(1)/tests/fuzz_reply_%.o: tests/fuzz_reply.c
+	@mkdir -p $$(@D)
+	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) $(2) $$(FUZZ_H_OPT) -DFUZZ_DIALECT=$$* -MMD -MP -c $$< -o $$@
+
 $(1)/tests/frame_h.o: firmware/proto/frame.c
 	@mkdir -p $$(@D)
 	$$(Q)$$(CLANG) $$(FUZZ_CFLAGS) $(2) $$(FUZZ_H_OPT) $$(FUZZ_HFRAME) -MMD -MP -c $$< -o $$@
@@ -124,12 +134,13 @@ $(eval $(call FUZZ_TREE,$(FUZZ_DIR),))
 $(eval $(call FUZZ_TREE,$(FUZZ_SDIR),$(FUZZ_SMALL_DEFS)))
 
 ##
-## fuzz: every libFuzzer target for FUZZ_SECONDS (default 60) each, FUZZ_CONF=small (default) or full; new inputs in <tree>/corpus
+## fuzz: every libFuzzer target for FUZZ_SECONDS (default 60) each (reply_<dialect>: FUZZ_REPLY_RUNS, 10^6, executions each), FUZZ_CONF=small (default) or full; new inputs in <tree>/corpus
 fuzz: $(FUZZ_LBINS)
 	$(Q)fail=0; for t in $(FUZZ_TARGETS); do \
 	    mkdir -p $(FUZZ_LDIR)/corpus/$$t $(FUZZ_LDIR)/artifacts; \
-	    echo "== fuzz_$$t ($(FUZZ_CONF), $(FUZZ_SECONDS) s)"; \
-	    $(FUZZ_LDIR)/fuzz_$$t $(FUZZ_OPTS) -max_total_time=$(FUZZ_SECONDS) \
+	    case $$t in reply_*) lim="-runs=$(FUZZ_REPLY_RUNS)";; *) lim="-max_total_time=$(FUZZ_SECONDS)";; esac; \
+	    echo "== fuzz_$$t ($(FUZZ_CONF), $$lim)"; \
+	    $(FUZZ_LDIR)/fuzz_$$t $(FUZZ_OPTS) $$lim \
 	        $(if $(filter-out 1,$(FUZZ_JOBS)),-jobs=$(FUZZ_JOBS) -workers=$(FUZZ_JOBS)) -artifact_prefix=$(FUZZ_LDIR)/artifacts/$$t- \
 	        $(FUZZ_LDIR)/corpus/$$t tests/corpus/$$t > $(FUZZ_LDIR)/fuzz_$$t.log 2>&1 \
 	        || { fail=1; echo "fuzz_$$t: FAILED (log $(FUZZ_LDIR)/fuzz_$$t.log)"; tail -40 $(FUZZ_LDIR)/fuzz_$$t.log; }; \
