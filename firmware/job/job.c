@@ -536,6 +536,17 @@ static int job_own_command(struct job *j, struct job_args *a)
     case JOB_CMD_LINK:
         j->link = (uint8_t)a->value; /* enum job_link */
         return CP_ST_OK;
+    case JOB_CMD_TOOLAXIS:
+        if (a->na == 2u && !(cp_fabs(v[0]) <= JOB_TOOLAXIS_ANGLE_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|lead| <= 60");
+        }
+        if (a->na == 2u && !(cp_fabs(v[1]) <= JOB_TOOLAXIS_ANGLE_MAX)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "|side| <= 60");
+        }
+        j->toolaxis = (uint8_t)a->value;
+        j->lead = a->na == 2u ? v[0] : CP_R(0.0);
+        j->side = a->na == 2u ? v[1] : CP_R(0.0);
+        return CP_ST_OK;
     case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
             return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "96..1024");
@@ -623,7 +634,8 @@ void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
 static const uint8_t dump_cmds[] = {
     JOB_CMD_TOOL,    JOB_CMD_LINES, JOB_CMD_STEPS,   JOB_CMD_FEED,    JOB_CMD_FORMAT,
     JOB_CMD_RXBUF,   JOB_CMD_CHECKSUM, JOB_CMD_SURFACE, JOB_CMD_PLACE, JOB_CMD_TILT,
-    JOB_CMD_SAFE,    JOB_CMD_SPINDLE, JOB_CMD_WCS,    JOB_CMD_MACHINE, JOB_CMD_LINK};
+    JOB_CMD_SAFE,    JOB_CMD_SPINDLE, JOB_CMD_WCS,    JOB_CMD_MACHINE, JOB_CMD_LINK,
+    JOB_CMD_TOOLAXIS};
 #define JOB_DUMP_ITEMS_OWN ((unsigned)(sizeof dump_cmds / sizeof dump_cmds[0]))
 
 /* A command of one word (FORMAT, CHECKSUM, SURFACE, WCS, MACHINE, LINK): its word for the
@@ -716,6 +728,11 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
         return dump_word(a, j->wcs);
     case JOB_CMD_MACHINE:
         return dump_word(a, j->machine);
+    case JOB_CMD_TOOLAXIS: /* TOOLAXIS AC|IJK lead side (OFF is the default) */
+        job_dump_args(a, JOB_CMD_TOOLAXIS, job_word_of(JOB_CMD_TOOLAXIS, j->toolaxis, 0u));
+        a->v[0] = j->lead;
+        a->v[1] = j->side;
+        return j->toolaxis == JOB_TOOLAXIS_OFF ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
     default: /* JOB_CMD_LINK */
         return dump_word(a, j->link);
     }

@@ -23,6 +23,10 @@
  *                            machine's answers (machines.def; default GENERIC)
  *   LINK HOST | MACHINE      where the G-code program goes: up the host link (default: a
  *                            host that takes the G-code itself) or down the machine link
+ *   TOOLAXIS OFF | AC lead side | IJK lead side   5-axis words on every G1: the streamed
+ *                            normal tilted lead degrees along the travel and side degrees
+ *                            to its left (|.| <= 60), as A/C table angles or as the tool
+ *                            vector I J K (proto's toolaxis.h; the dialect must take them)
  *   FORMAT GCODE | FRAMES
  *   RXBUF n                  the machine's RX buffer for character counting
  *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 96..1024, default 128)
@@ -57,11 +61,15 @@ enum job_format {
 
 /* The machine dialects (MACHINE), one per row of machines.def: JOB_MACHINE_GENERIC, ... */
 enum job_machine {
-#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END) JOB_MACHINE_##NAME,
+#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END, AC, IJK) JOB_MACHINE_##NAME,
 #include "machines.def"
 #undef CP_MACHINE
     JOB_MACHINES
 };
+
+/* TOOLAXIS: the 5-axis words of the program (job.toolaxis; proto's toolaxis.h). */
+enum job_toolaxis { JOB_TOOLAXIS_OFF = 0, JOB_TOOLAXIS_AC = 1, JOB_TOOLAXIS_IJK = 2 };
+#define JOB_TOOLAXIS_ANGLE_MAX CP_R(60.0) /* |lead|, |side| <= 60 degrees */
 
 /* LINK: where the G-code program goes (job.link). */
 enum job_link { JOB_LINK_HOST = 0, JOB_LINK_MACHINE = 1 };
@@ -124,6 +132,8 @@ struct job {
     uint8_t link;            /* enum job_link (LINK) */
     uint8_t wcs;             /* WCS: 0..5 for G54..G59 */
     uint8_t safe_set;        /* 1 once SAFE was given */
+    uint8_t toolaxis;        /* enum job_toolaxis (TOOLAXIS) */
+    cp_real lead, side;      /* TOOLAXIS lead side, degrees as given */
     uint16_t have;           /* JOB_HAVE_* bits */
     uint8_t kind;            /* enum path_kind (SURFACE), default PATH_CANAL */
     uint8_t format;          /* enum job_format */

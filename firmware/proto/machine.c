@@ -5,8 +5,8 @@
 #include "parse.h"
 
 static const struct machine_dialect dialects[JOB_MACHINES] = {
-#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END)                   \
-    [JOB_MACHINE_##NAME] = {RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END},
+#define CP_MACHINE(NAME, WORD, RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END, AC, IJK)                   \
+    [JOB_MACHINE_##NAME] = {RXBUF, LINE_MAX, ACKS, CHECKSUM, SPLIT, POLL, END, AC, IJK},
 #include "machines.def"
 #undef CP_MACHINE
 };

@@ -28,6 +28,8 @@ struct machine_dialect {
     uint8_t split;    /* 1: one command per line */
     uint8_t poll;     /* real-time status request byte, 0 = none */
     const char *end;  /* the program end line ("M2", "M400") */
+    uint8_t ac;       /* 1: takes TOOLAXIS AC's A and C words */
+    uint8_t ijk;      /* 1: takes TOOLAXIS IJK's I J K words */
 };
 
 /* The row of dialect m (enum job_machine); GENERIC's for an m out of range. */
