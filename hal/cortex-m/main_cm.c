@@ -21,7 +21,8 @@ static struct proto proto;
 int main(void)
 {
     struct proto_cfg cfg = {0};
-    hal_uart_cmsdk_init(&uart0, &uart);
+    hal_uart_cmsdk_clock_init();
+    hal_uart_cmsdk_init(&uart0, &uart, 0u);
     cfg.uart = &uart;
     for (;;) {
         int r;
@@ -34,7 +35,7 @@ int main(void)
         do {
             r = proto_poll(&proto);
             if (r == 0) {
-                hal_uart_cmsdk_sleep(&uart0);
+                hal_uart_cmsdk_sleep();
             }
         } while (r >= 0);
     }
