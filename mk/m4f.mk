@@ -5,15 +5,16 @@
 # Included by the top Makefile (uses its BUILD, CROSS, WARN, FPFLAGS, INC, FW_SRC,
 # TEST_SRC, HOST_FW_OBJ, Q). Images under $(BUILD)/m4f:
 #   fw-<set>.elf  a product image: firmware/*.c (model set <set>) + hal/cortex-m (startup,
-#              UART0/TIMER0 port, main_cm) linked with linker/mps2_an386.ld, FLASH/RAM
+#              UART0 + UART1 / TIMER0 port, main_cm) linked with linker/mps2_an386.ld, FLASH/RAM
 #              lengths = the image's budget (linker/budget.txt `image` rows)
 #   fw.elf     fw-all.elf (M4F_FW_SET), the all-features image
 #   unit.elf   the unit tests + firmware, printf/semihosting (linker/mps2_an386_test.ld)
 #   bench.elf  bench/bench_m4f.c + firmware + tests/hal_mem.c (instruction counts)
 #
-# Run the firmware with UART0 on a pty the host created (host_sim does this):
+# Run the firmware with UART0 (the host link) on a pty the host created (host_sim does this):
 #   qemu-system-arm -M mps2-an386 -display none -monitor none -serial /dev/pts/N \
 #       -semihosting-config enable=on,target=native -icount shift=7 -kernel build/m4f/fw.elf
+# A second `-serial /dev/pts/M` after the first puts UART1 (the machine link) on pty M.
 # (m4f-qemu-fw prints this line with the image path filled in.)
 
 M4F      := $(BUILD)/m4f
@@ -72,7 +73,8 @@ M4F_SEMI_OBJ := $(M4F)/hal/startup.o $(M4F)/hal/semihost.o
 # (gcc's call graph shows them as __indirect_call). tools/stack.sh charges every
 # indirect call with the deepest of these. Ports must keep these leaf-ish.
 M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
-M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler TIMER0_IRQHandler
+M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler UART1RX_IRQHandler UART1TX_IRQHandler \
+                TIMER0_IRQHandler
 
 .PHONY: m4f-fw m4f-unit m4f-qemu-fw size stack bench bench-host guard-alloc guard-double \
         guard-warn guard-budget guard-stack guard-selftest m4f-pty guard-images size-images \
@@ -117,7 +119,7 @@ $(M4F)/bench/%.o: bench/%.c
 # all-models image). The link emits the stack facts of that unit, ltrans0.ltrans.su/.ci
 # in $(M4F)/ltrans-<set>/, and -Wstack-usage applies to its frames: tools/stack.sh reads
 # them like any other .ci file. The HAL port objects (startup with its own flags,
-# UART0 port, main) stay ordinary objects with their own .ci. unit.elf and bench.elf
+# UART port, main) stay ordinary objects with their own .ci. unit.elf and bench.elf
 # link the ordinary objects $(M4F)/fw/ (M4F_LTO=0 builds the images from those too).
 # The model sets, from firmware/models/models.def (NAME:name of every row but the canal):
 # set `all` is the defaults (every product model; a test-only model such as the example

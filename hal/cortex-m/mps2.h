@@ -1,11 +1,25 @@
 /* mps2.h - register map of the QEMU mps2-an386 board (Cortex-M4F) used by the cortex-m port.
  * SPDX-License-Identifier: MIT
  *
- * Only what the port touches: CMSDK APB UART0, CMSDK APB TIMER0, the NVIC
+ * Only what the port touches: CMSDK APB UART0 and UART1, CMSDK APB TIMER0, the NVIC
  * enable/pending registers, SCB CPACR, and the interrupt-mask instructions.
- * Addresses and IRQ numbers: QEMU hw/arm/mps2.c (an385/an386 map), checked on
- * QEMU 7.2 (see docs QEMU.md). Nothing here is QEMU-specific beyond the
- * board map: the same CMSDK blocks exist on the real MPS2 FPGA images.
+ * Nothing here is QEMU-specific beyond the board map: the same CMSDK blocks exist on
+ * the real MPS2 FPGA images.
+ *
+ * Addresses and IRQ numbers: QEMU hw/arm/mps2.c, mps2_common_init(), the case shared by
+ * FPGA_AN385 / FPGA_AN386 / FPGA_AN500:
+ *     uartbase[] = {0x40004000, 0x40005000, 0x40006000, 0x40007000, 0x40009000};
+ *     uartirq[]  = {0, 2, 4, 18, 20};   RX irq number; TX irq is always one greater
+ *     cmsdk_apb_uart_create(uartbase[i], txint = irq uartirq[i] + 1, rxint = irq uartirq[i],
+ *                           ..., serial_hd(i), SYSCLK_FRQ)
+ *   and TIMER0 at 0x40000000 on IRQ 8 (timer i: 0x40000000 + i * 0x1000, IRQ 8 + i).
+ *   UART i is the i-th -serial of the QEMU command line (serial_hd(i)); without one it
+ *   has no backend (QEMU drops what it sends, nothing arrives).
+ * Checked on QEMU 7.2.22 (Debian 1:7.2+dfsg-7+deb12u18) with a probe image: with every
+ * NVIC enable clear, set TXEN|RXEN|TXIE|RXIE, send one byte, receive one byte, read
+ * NVIC_ISPR0. UART0: TX -> 0x2 (IRQ 1), RX -> 0x1 (IRQ 0), its byte on the 1st -serial;
+ * UART1: TX -> 0x8 (IRQ 3), RX -> 0x4 (IRQ 2), its byte on the 2nd -serial.
+ * (The UARTs' overrun interrupts, ORed on IRQ 12, stay disabled: overruns are counted.)
  */
 #ifndef MPS2_H
 #define MPS2_H
@@ -17,14 +31,20 @@
 /* Core clock and the APB peripheral clock: 25 MHz on mps2 (SYSCLK_FRQ). */
 #define MPS2_SYSCLK_HZ 25000000u
 
-/* CMSDK APB UART0. Registers: DATA +0x0, STATE +0x4, CTRL +0x8, INTSTATUS +0xC (W1C),
- * BAUDDIV +0x10 (must be >= 16 when TX is enabled). */
+/* CMSDK APB UART: one register block per instance. DATA (RX/TX holding register),
+ * STATE (b0 TX full, b1 RX full, b2/b3 TX/RX overrun, W1C), CTRL (b0/b1 TX/RX enable,
+ * b2/b3 TX/RX interrupt enable), INTSTATUS (b0 TX, b1 RX, W1C), BAUDDIV (must be >= 16
+ * when TX is enabled). */
+struct mps2_uart {
+    volatile uint32_t data;      /* +0x00 */
+    volatile uint32_t state;     /* +0x04 */
+    volatile uint32_t ctrl;      /* +0x08 */
+    volatile uint32_t intstatus; /* +0x0C */
+    volatile uint32_t bauddiv;   /* +0x10 */
+};
 #define MPS2_UART0_BASE 0x40004000u
-#define MPS2_UART0_DATA MPS2_REG(MPS2_UART0_BASE + 0x00u)
-#define MPS2_UART0_STATE MPS2_REG(MPS2_UART0_BASE + 0x04u)
-#define MPS2_UART0_CTRL MPS2_REG(MPS2_UART0_BASE + 0x08u)
-#define MPS2_UART0_INTSTATUS MPS2_REG(MPS2_UART0_BASE + 0x0Cu)
-#define MPS2_UART0_BAUDDIV MPS2_REG(MPS2_UART0_BASE + 0x10u)
+#define MPS2_UART1_BASE 0x40005000u
+#define MPS2_UART(base) ((struct mps2_uart *)(base))
 #define MPS2_UART_STATE_TXFULL 0x01u
 #define MPS2_UART_STATE_RXFULL 0x02u
 #define MPS2_UART_STATE_TXOVR 0x04u /* W1C */
@@ -49,6 +69,8 @@
 /* External interrupt numbers (vector = 16 + irq). */
 #define MPS2_IRQ_UART0_RX 0
 #define MPS2_IRQ_UART0_TX 1
+#define MPS2_IRQ_UART1_RX 2
+#define MPS2_IRQ_UART1_TX 3
 #define MPS2_IRQ_TIMER0 8
 
 /* NVIC set-enable / clear-enable / clear-pending, IRQ 0..31. */

@@ -15,10 +15,10 @@ extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss, _sstack, _estack;
 /* The vector table as a struct: ISO C forbids mixing the initial stack pointer
  * (an object address) into an array of function pointers under -pedantic. */
 /* mps2-an386 wires IRQ 0..31; the table stops at the highest one a HAL enables,
- * MPS2_IRQ_TIMER0 = 8 (hal_uart_cmsdk_init's NVIC_ISER0 write: UART0 RX 0, TX 1,
- * TIMER0 8). IRQ 9..31 stay disabled in the NVIC (their reset state), so their
- * vectors are never fetched (-92 B of flash). A port that enables a higher IRQ must
- * raise this (the static assert below ties it to the IRQ numbers of mps2.h). */
+ * MPS2_IRQ_TIMER0 = 8 (the NVIC_ISER0 writes of hal_uart_cmsdk.c: UART0 RX 0, TX 1,
+ * UART1 RX 2, TX 3, TIMER0 8). IRQ 9..31 stay disabled in the NVIC (their reset state),
+ * so their vectors are never fetched (-92 B of flash). A port that enables a higher IRQ
+ * must raise this (the static assert below ties it to the IRQ numbers of mps2.h). */
 #define STARTUP_N_IRQ 9
 struct startup_vectors {
     uint32_t *stack_top;
@@ -28,6 +28,8 @@ struct startup_vectors {
 
 void UART0RX_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void UART0TX_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void UART1RX_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void UART1TX_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void TIMER0_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 void HardFault_Handler(void) __attribute__((weak, alias("Default_Handler")));
 
@@ -41,7 +43,8 @@ static const struct startup_vectors vectors = {
         D /* SVCall */, D /* DebugMon */, 0, D /* PendSV */, D /* SysTick */
     },
     {
-        UART0RX_IRQHandler /* 0 */, UART0TX_IRQHandler /* 1 */, D, D, D, D, D, D,
+        UART0RX_IRQHandler /* 0 */, UART0TX_IRQHandler /* 1 */,
+        UART1RX_IRQHandler /* 2 */, UART1TX_IRQHandler /* 3 */, D, D, D, D,
         TIMER0_IRQHandler /* 8 */
     }
 };
@@ -49,6 +52,8 @@ static const struct startup_vectors vectors = {
 /* compile-time check: every IRQ the port enables has its vector (C99: no _Static_assert) */
 typedef char startup_irqs_in_table[(MPS2_IRQ_UART0_RX < STARTUP_N_IRQ &&
                                     MPS2_IRQ_UART0_TX < STARTUP_N_IRQ &&
+                                    MPS2_IRQ_UART1_RX < STARTUP_N_IRQ &&
+                                    MPS2_IRQ_UART1_TX < STARTUP_N_IRQ &&
                                     MPS2_IRQ_TIMER0 < STARTUP_N_IRQ) ? 1 : -1];
 
 /* An unexpected exception: stop here (a debugger shows which via IPSR). The test

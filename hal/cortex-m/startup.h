@@ -27,6 +27,8 @@ void Default_Handler(void);
 void HardFault_Handler(void);
 void UART0RX_IRQHandler(void);
 void UART0TX_IRQHandler(void);
+void UART1RX_IRQHandler(void);
+void UART1TX_IRQHandler(void);
 void TIMER0_IRQHandler(void);
 
 /* The application entry, called by Reset_Handler with .data/.bss ready and the FPU on. */

@@ -34,6 +34,11 @@
  *  8. No malloc, no stdio, C99 with the project WARN flags (guard-warn compiles
  *     every hal/<port> C file with clang and gcc). File-scope state is allowed in hal/ only.
  *  9. Transmit nothing before the host has spoken (a pty or QEMU UART drops it).
+ * 10. Two links (struct proto_cfg: .uart the host link, .machine the machine link or
+ *     NULL): the same driver code serves both, one state struct per instance (see
+ *     "A second instance" below). Every instance's now_ms reads the ONE clock of the
+ *     port; the sleep helper of obligation 6 wakes on an event of EITHER instance (one
+ *     event flag set by every ISR is the simplest way); 1-9 hold per instance.
  */
 #include "hal_uart.h"
 
@@ -43,6 +48,34 @@ struct hal_uart_template {
 };
 
 void hal_uart_template_init(struct hal_uart_template *s, struct hal_uart *u);
+
+/* A second instance (obligation 10; hal/cortex-m/hal_uart_cmsdk.c is the worked example
+ * with UART0 and UART1). init takes the instance number and looks its wiring up in a
+ * const table; each instance's ISRs reach its state through a per-instance pointer; the
+ * clock and the wake-up event are the port's, not an instance's:
+ *
+ *   static const struct { uint32_t base; uint8_t irq_rx, irq_tx; } wiring[2] = {
+ *       {UART0_BASE, UART0_RX_IRQ, UART0_TX_IRQ},   // TODO: from the board's manual
+ *       {UART1_BASE, UART1_RX_IRQ, UART1_TX_IRQ},
+ *   };
+ *   static struct hal_uart_template *units[2]; // set by init, for the ISRs
+ *   static volatile uint8_t event;             // set by every ISR, taken by sleep
+ *   void UART0_RX_IRQHandler(void) { rx_drain(units[0]); event = 1u; }
+ *   void UART1_RX_IRQHandler(void) { rx_drain(units[1]); event = 1u; }
+ *   void hal_uart_template_init(struct hal_uart_template *s, struct hal_uart *u,
+ *                               unsigned unit); // u->now_ms: the one clock for both
+ *
+ * and in main_<port>.c (file-scope state: hal/ only):
+ *
+ *   static struct hal_uart_template uart0, uart1;
+ *   static struct hal_uart host, machine;
+ *   hal_uart_template_clock_init();
+ *   hal_uart_template_init(&uart0, &host, 0u);
+ *   hal_uart_template_init(&uart1, &machine, 1u);
+ *   cfg.uart = &host;
+ *   cfg.machine = &machine; // NULL on a port with one link
+ *   ... proto_poll() == 0: hal_uart_template_sleep(); // wakes on either instance
+ */
 
 static int hal_uart_template_write(void *ctx, const uint8_t *buf, size_t len)
 {
