@@ -5,12 +5,15 @@
  * Each test names the defect of issue 17 it guards against.
  * SPDX-License-Identifier: MIT
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "hal_mem.h"
 #include "proto.h"
 #include "test.h"
+
+#define TM_PI 3.14159265358979323846
 
 struct link_end {
     struct hal_mem m;
@@ -339,6 +342,8 @@ int test_machine_pass_through(void)
 {
     char l[200];
     CHECK(rig(1));
+    CHECK(cmd("$H", "error:1 ")); /* the cell is not wired yet: not a command */
+    CHECK(cmd("LINK MACHINE", "ok"));
     send_to(&rg.host, "$H\n");
     CHECK(line_of(&rg.mach, l, sizeof l, 100));
     CHECK(strcmp(l, "$H") == 0);
@@ -357,8 +362,14 @@ int test_machine_pass_through(void)
     /* a machine that never answers: the host gets error:22, then the link is free */
     rg.host.m.tick_ms = 50;
     send_to(&rg.host, "G0 X1\n");
+    CHECK(line_of(&rg.mach, l, sizeof l, 100) && strcmp(l, "G0 X1") == 0);
     CHECK(line_of(&rg.host, l, sizeof l, 2000) && strncmp(l, "error:22 ", 9) == 0);
     CHECK(cmd("$I", "ok"));
+    CHECK(cmd("JOB CLEAR", "ok")); /* the wiring outlives the job */
+    send_to(&rg.host, "$X\n");
+    CHECK(line_of(&rg.mach, l, sizeof l, 100) && strcmp(l, "$X") == 0);
+    send_to(&rg.mach, "ok\n");
+    CHECK(line_of(&rg.host, l, sizeof l, 100) && strcmp(l, "ok") == 0);
     /* one link: no pass-through, an unknown line is an error */
     CHECK(rig(0));
     CHECK(cmd("$H", "error:1 "));
@@ -439,5 +450,128 @@ int test_machine_linuxcnc(void)
     CHECK(strcmp(fin, "ok") == 0);
     CHECK_EQ_INT(g1, path_count(&rg.p.path));
     CHECK(strcmp(l, "M2") == 0);
+    return 0;
+}
+
+/* TOOLAXIS: the words recovered (A/C, or I J K) against the streamed normal and the travel
+ * (in double, from the program's own points): the angle to the normal is
+ * acos(cos lead cos side), the lead leans along the travel, the side to its left; machines
+ * that cannot take the words refuse the job at RUN (grbl would answer A/C with error:20,
+ * Marlin ignore them). */
+int test_machine_toolaxis(void)
+{
+    static const struct {
+        const char *machine, *axis;
+        double lead, side;
+    } cases[] = {{"LINUXCNC", "AC", 0.0, 0.0}, {"LINUXCNC", "AC", 10.0, 0.0},
+                 {"GENERIC", "IJK", 0.0, 12.5}, {"GENERIC", "IJK", -7.0, 5.0}};
+    char l[200], c[64];
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        double prev[3] = {0, 0, 0}, worst = 0.0, want;
+        unsigned n = 0, j;
+        int have_prev = 0, k;
+        CHECK(rig(1));
+        CHECK(load(paper));
+        snprintf(c, sizeof c, "MACHINE %s", cases[i].machine);
+        CHECK(cmd(c, "ok"));
+        CHECK(cmd("LINK MACHINE", "ok"));
+        CHECK(cmd("FEED 600", "ok"));
+        snprintf(c, sizeof c, "TOOLAXIS %s %g %g", cases[i].axis, cases[i].lead, cases[i].side);
+        CHECK(cmd(c, "ok"));
+        CHECK(start_run());
+        want = acos(cos(cases[i].lead * TM_PI / 180.0) * cos(cases[i].side * TM_PI / 180.0));
+        for (k = 0; k < 200000 && rg.p.state != PROTO_IDLE; k++) {
+            while (line_of(&rg.mach, l, sizeof l, 0)) {
+                struct raster_pt pt;
+                double a[3], p[3], d[3], nn[3], t[3], s[3], dn, tl, ang, al, sd;
+                if (strncmp(l, "G1 ", 3) != 0) {
+                    if (machine_dialect(rg.p.job.machine)->acks) {
+                        send_to(&rg.mach, "ok\n");
+                    }
+                    continue;
+                }
+                p[0] = strtod(strstr(l, " X") + 2, NULL);
+                p[1] = strtod(strstr(l, " Y") + 2, NULL);
+                p[2] = strtod(strstr(l, " Z") + 2, NULL);
+                if (strstr(l, " A") != NULL) {
+                    double A = strtod(strstr(l, " A") + 2, NULL) * TM_PI / 180.0;
+                    double C = strtod(strstr(l, " C") + 2, NULL) * TM_PI / 180.0;
+                    a[0] = sin(A) * sin(C);
+                    a[1] = -sin(A) * cos(C);
+                    a[2] = cos(A);
+                } else {
+                    a[0] = strtod(strstr(l, " I") + 2, NULL);
+                    a[1] = strtod(strstr(l, " J") + 2, NULL);
+                    a[2] = strtod(strstr(l, " K") + 2, NULL);
+                }
+                /* the streamed normal of this point (the iterator's, exact as streamed) */
+                CHECK(path_seek(&rg.p.path, n) == CP_OK && path_next(&rg.p.path, &pt) == CP_OK);
+                tl = sqrt((double)pt.n.x * pt.n.x + (double)pt.n.y * pt.n.y + (double)pt.n.z * pt.n.z);
+                nn[0] = pt.n.x / tl;
+                nn[1] = pt.n.y / tl;
+                nn[2] = pt.n.z / tl;
+                s[0] = a[1] * nn[2] - a[2] * nn[1]; /* the angle, well conditioned near 0 */
+                s[1] = a[2] * nn[0] - a[0] * nn[2];
+                s[2] = a[0] * nn[1] - a[1] * nn[0];
+                ang = atan2(sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]),
+                            a[0] * nn[0] + a[1] * nn[1] + a[2] * nn[2]);
+                worst = fmax(worst, fabs(ang - want));
+                if (have_prev && (cases[i].lead != 0.0 || cases[i].side != 0.0)) {
+                    for (j = 0; j < 3; j++) {
+                        d[j] = p[j] - prev[j];
+                    }
+                    dn = d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2];
+                    for (j = 0; j < 3; j++) {
+                        t[j] = d[j] - dn * nn[j];
+                    }
+                    tl = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+                    for (j = 0; j < 3; j++) {
+                        t[j] /= tl;
+                    }
+                    s[0] = nn[1] * t[2] - nn[2] * t[1];
+                    s[1] = nn[2] * t[0] - nn[0] * t[2];
+                    s[2] = nn[0] * t[1] - nn[1] * t[0];
+                    al = a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
+                    sd = a[0] * s[0] + a[1] * s[1] + a[2] * s[2];
+                    /* a = cos(side)(cos(lead) n + sin(lead) t) + sin(side) s */
+                    worst = fmax(worst, fabs(sd - sin(cases[i].side * TM_PI / 180.0)));
+                    worst = fmax(worst, fabs(al - cos(cases[i].side * TM_PI / 180.0) *
+                                                       sin(cases[i].lead * TM_PI / 180.0)));
+                }
+                memcpy(prev, p, sizeof prev);
+                have_prev = 1;
+                n++;
+                if (machine_dialect(rg.p.job.machine)->acks) {
+                    send_to(&rg.mach, "ok\n");
+                }
+            }
+            (void)proto_poll(&rg.p);
+        }
+        CHECK_EQ_INT(n, path_count(&rg.p.path));
+        /* 4 decimals of a unit vector (5e-5), 3 of a degree (1e-5 rad); the travel from
+         * points of 4 decimals over ~0.2 mm chords: the lead/side components ~5e-4 */
+        if (worst > (cases[i].lead != 0.0 || cases[i].side != 0.0 ? 1e-3 : 3e-5)) {
+            printf("  %s %s %g %g: worst %.3g\n", cases[i].machine, cases[i].axis, cases[i].lead,
+                   cases[i].side, worst);
+        }
+        CHECK(worst <= (cases[i].lead != 0.0 || cases[i].side != 0.0 ? 1e-3 : 3e-5));
+        printf("  note: TOOLAXIS %s %g %g on %s: %u points, worst angle/component error %.2g\n",
+               cases[i].axis, cases[i].lead, cases[i].side, cases[i].machine, n, worst);
+    }
+    /* the machines that cannot take the words: refused at RUN */
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cmd("TOOLAXIS AC 0 0", "ok"));
+    CHECK(cmd("MACHINE GRBL", "ok"));
+    CHECK(cmd("RUN", "error:43 "));
+    CHECK(cmd("MACHINE MARLIN", "ok"));
+    CHECK(cmd("RUN", "error:43 "));
+    CHECK(cmd("MACHINE LINUXCNC", "ok"));
+    CHECK(cmd("TOOLAXIS IJK 0 0", "ok"));
+    CHECK(cmd("RUN", "error:43 "));
+    CHECK(cmd("TOOLAXIS AC 61 0", "error:6 "));
+    CHECK(cmd("TOOLAXIS OFF 1", "error:3 "));
     return 0;
 }

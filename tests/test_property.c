@@ -651,7 +651,7 @@ int test_property_repro_f3(void);
 int test_property_repro_f3(void)
 {
     static const char *const job[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",
-                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 96",
+                                      "LINES 3 -25 10", "STEPS 40", "RXBUF 120",
                                       "FEED 600",              "SAFE 20",
                                       "RUN"};
     struct proto_cfg cfg = {0};
@@ -668,7 +668,7 @@ int test_property_repro_f3(void)
         (void)proto_poll(&pp);
     }
     /* the program's first lines (the modes 20 bytes, G0 Z 12, G0 X Y 22, the plunge 36)
-     * in flight: the first cut line does not fit RXBUF 96 and waits */
+     * and the first cut line in flight: the next one does not fit RXBUF 120 and waits */
     pm.out_len = 0;
     (void)hal_mem_feed_str(&pm, "?");
     (void)proto_poll(&pp); /* report staged, the G1 line built behind it */

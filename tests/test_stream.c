@@ -395,7 +395,7 @@ static const struct bad_vec bad[] = {
     {"FEED -5", CP_ST_OUT_OF_RANGE},
     {"FORMAT XML", CP_ST_BAD_KEYWORD},
     {"RXBUF 8", CP_ST_OUT_OF_RANGE},
-    {"RXBUF 95", CP_ST_OUT_OF_RANGE}, /* smaller than the longest stream line */
+    {"RXBUF 119", CP_ST_OUT_OF_RANGE}, /* smaller than the longest stream line */
     {"FEED 0.0009", CP_ST_OUT_OF_RANGE},
     {"FEED 600 0", CP_ST_OUT_OF_RANGE}, /* a plunge feed of 0 */
     {"FEED 600 100 50 7", CP_ST_BAD_ARITY},
@@ -616,7 +616,7 @@ int test_stream_error_cause(void)
     static const char *const cases[][2] = {
         {"FEED 0.0009", "error:6 value out of range (FEED 0.0009: 0 or 0.001..1e6)"},
         {"FEED 600 100 1e7", "error:6 value out of range (FEED 1e7: 0.001..1e6)"},
-        {"RXBUF 95", "error:6 value out of range (RXBUF 95: 96..1024)"},
+        {"RXBUF 119", "error:6 value out of range (RXBUF 119: 120..1024)"},
         {"LINES 3 -10 200", "error:6 value out of range (LINES 200: |u| <= 180)"},
         {"LINES 3 5 5", "error:6 value out of range (LINES 5: u0 != u1 for n > 1)"},
         {"TOL 0", "error:6 value out of range (TOL 0: 0.01..10000)"},

@@ -549,7 +549,7 @@ static int job_own_command(struct job *j, struct job_args *a)
         return CP_ST_OK;
     case JOB_CMD_RXBUF:
         if (u < JOB_RXBUF_MIN || u > JOB_RXBUF_MAX) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "96..1024");
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "120..1024");
         }
         j->rxbuf = (uint16_t)u;
         return CP_ST_OK;
@@ -564,9 +564,13 @@ static int job_own_command(struct job *j, struct job_args *a)
     case JOB_CMD_PLACE:
     case JOB_CMD_TILT:
         return job_place_cmd(j, a);
-    case JOB_CMD_CLEAR: /* JOB CLEAR: the defaults */
+    case JOB_CMD_CLEAR: { /* JOB CLEAR: the defaults, but the cell's wiring stays */
+        uint8_t machine = j->machine, link = j->link;
         job_init(j);
+        j->machine = machine;
+        j->link = link;
         return CP_ST_OK;
+    }
     default: /* not JOB's (unreachable: job_line calls the owner's hook) */
         return CP_ST_UNKNOWN_CMD;
     }

@@ -29,13 +29,14 @@
  *                            vector I J K (proto's toolaxis.h; the dialect must take them)
  *   FORMAT GCODE | FRAMES
  *   RXBUF n                  the machine's RX buffer for character counting
- *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 96..1024, default 128)
+ *                            (JOB_RXBUF_MIN..JOB_RXBUF_MAX = 120..1024, default: the dialect's)
  *   CHECKSUM ON | OFF        Marlin-style N<n> ... *<cs> lines and Resend: handling (GCODE)
  *   PLACE x y z [rz]         the part's origin on the table (mm, |.| <= 1000) and its turn
  *                            about Z (degrees, |rz| <= 360, default 0); error:6 out of range
  *   TILT axis_deg angle_deg  the base plane inclined by angle_deg (|.| <= 90) about the
  *                            table line at axis_deg (|.| <= 360) through the part's origin
- *   JOB CLEAR                the defaults (job_init); $J (the protocol's) prints the job
+ *   JOB CLEAR                the defaults (job_init), but MACHINE and LINK (the cell's
+ *                            wiring) stay; $J (the protocol's) prints the job
  *   SURFACE CANAL | GSR | CHANNEL | DRC   the model RUN streams (default CANAL; the words
  *                            of models.def); a new SURFACE starts that model's geometry
  *                            afresh (path.h)
@@ -85,7 +86,7 @@ enum job_link { JOB_LINK_HOST = 0, JOB_LINK_MACHINE = 1 };
 /* Most tokens of one command line (keyword included). */
 #define JOB_MAX_TOKENS 20u
 
-#define JOB_RXBUF_MIN 96u /* >= the longest stream line (out_gcode.h OUT_GCODE_LINE_MAX) */
+#define JOB_RXBUF_MIN 120u /* >= the longest stream line (out_gcode.h OUT_GCODE_LINE_MAX) */
 #define JOB_RXBUF_MAX 1024u
 #define JOB_FEED_MAX CP_R(1.0e6)
 #define JOB_FEED_MIN CP_R(0.001) /* smallest non-zero FEED, mm/min (F is printed exactly) */

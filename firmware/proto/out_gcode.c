@@ -4,13 +4,17 @@
 #include "out_gcode.h"
 #include "fmt.h"
 
-/* The longest line: "N<10 digits> " (12), "G1 X" and " Y", " Z" each with an int32 count
- * written with its sign and point (12 bytes), " F" and a feed by fmt_real (at most 1 +
- * PARSE_MAX_DIGITS + 6 = 24 here), "*<3 digits>" (4), '\n': 79 bytes. The appends below
- * are bounded by pend[] anyway; the single bytes are stored directly. Without N and '*'
- * (grbl) it is 63: under grbl's 79 (machines.def LINE_MAX). */
-CP_STATIC_ASSERT(12 + 4 + 12 + 2 * (2 + 12) + 2 + 24 + 4 + 1 <= OUT_GCODE_LINE_MAX, gcode_line_fits);
-CP_STATIC_ASSERT(4 + 12 + 2 * (2 + 12) + 2 + 24 <= 79, gcode_line_fits_grbl);
+/* The longest line: "N<10 digits> " (12), "G1" (2), " X", " Y", " Z" each with an int32
+ * count written with its sign and point (2 + 12), TOOLAXIS IJK's " I", " J", " K" with
+ * 4 decimals of a unit vector (2 + 7), " F" and a feed by fmt_real (at most 1 +
+ * PARSE_MAX_DIGITS + 6 = 24 here), "*<3 digits>" (4), '\n': 113 bytes (TOOLAXIS AC's
+ * " A<180.000>" and " C<-180.000>" are 19 < 27). The appends are bounded by pend[] anyway.
+ * A grbl line (no N, '*' or 5-axis words) is at most 70: under grbl's 79, a Marlin line
+ * (N and '*') 86: under its 95 (machines.def LINE_MAX). */
+CP_STATIC_ASSERT(12 + 2 + 3 * (2 + 12) + 3 * (2 + 7) + 2 + 24 + 4 + 1 <= OUT_GCODE_LINE_MAX,
+                 gcode_line_fits);
+CP_STATIC_ASSERT(2 + 3 * (2 + 12) + 2 + 24 <= 79, gcode_line_fits_grbl);
+CP_STATIC_ASSERT(12 + 2 + 3 * (2 + 12) + 2 + 24 + 4 <= 95, gcode_line_fits_marlin);
 
 /* The stream line of each item (out_gcode_item), checksums and numbers aside. */
 static const char *const item_text[] = {
@@ -43,10 +47,70 @@ static cp_real feed_of(const struct job *job, const struct path *path, uint32_t 
     return at.line < 0 ? job->feed[2] : job->feed[0];
 }
 
-/* Append point k's line: "G1 X.. Y.. Z.." and " F<feed>" where the feed changes (modal
- * F: the machine keeps the previous line's). Returns CP_OK or the point's error. */
-static int put_point(char *out, size_t cap, size_t *pos, const struct out_run *run,
-                     struct path *path, const struct job *job, uint32_t k)
+/* The travel direction at point k (position p): the chord from point k - 1, or to point
+ * 1 at the path's first point (both placed; the last point written is remembered, so a
+ * neighbour is computed again only after a seek: a resend, RESUME, the run's first line).
+ * The iterator is left anywhere: the caller's next out_point seeks. */
+static int travel(struct out_gcode *g, const struct out_run *run, struct path *path, uint32_t k,
+                  const struct cp_vec3 *p, struct cp_vec3 *d)
+{
+    struct raster_pt q;
+    int e;
+    if (k > 0u && g->prev_ok && g->prev_k == k - 1u) {
+        cp_v3_sub(p, &g->prev_p, d);
+        return CP_OK;
+    }
+    if (k == 0u && path_count(path) < 2u) {
+        d->x = d->y = d->z = CP_R(0.0); /* one point: no travel, the axis is the normal */
+        return CP_OK;
+    }
+    e = out_point(path, &run->place, k > 0u ? k - 1u : 1u, &q);
+    if (e != CP_OK) {
+        return e;
+    }
+    if (k > 0u) {
+        cp_v3_sub(p, &q.p, d);
+    } else {
+        cp_v3_sub(&q.p, p, d);
+    }
+    return CP_OK;
+}
+
+/* Append TOOLAXIS's words of the point: " A.. C.." or " I.. J.. K..". */
+static int put_axis(struct out_gcode *g, const struct out_run *run, struct path *path,
+                    const struct job *job, uint32_t k, const struct raster_pt *pt, char *out,
+                    size_t cap, size_t *pos)
+{
+    struct cp_vec3 d, a;
+    cp_real A, C;
+    int e = travel(g, run, path, k, &pt->p, &d);
+    if (e != CP_OK) {
+        return e;
+    }
+    toolaxis_of(&g->axis, &pt->n, &d, &a);
+    if (job->toolaxis == JOB_TOOLAXIS_AC) {
+        toolaxis_ac(&a, &A, &C);
+        (void)fmt_str(out, cap, pos, " A");
+        (void)fmt_fixed(out, cap, pos, out_quantize(A, CP_R(1000.0)), 3u);
+        (void)fmt_str(out, cap, pos, " C");
+        (void)fmt_fixed(out, cap, pos, out_quantize(C, CP_R(1000.0)), 3u);
+        return CP_OK;
+    }
+    (void)fmt_str(out, cap, pos, " I");
+    (void)fmt_fixed(out, cap, pos, out_quantize(a.x, CP_R(10000.0)), 4u);
+    (void)fmt_str(out, cap, pos, " J");
+    (void)fmt_fixed(out, cap, pos, out_quantize(a.y, CP_R(10000.0)), 4u);
+    (void)fmt_str(out, cap, pos, " K");
+    (void)fmt_fixed(out, cap, pos, out_quantize(a.z, CP_R(10000.0)), 4u);
+    return CP_OK;
+}
+
+/* Append point k's line: "G1 X.. Y.. Z..", the tool axis with TOOLAXIS, and " F<feed>"
+ * where the feed changes (modal F: the machine keeps the previous line's). Returns CP_OK
+ * or the point's error. */
+static int put_point(struct out_gcode *g, char *out, size_t cap, size_t *pos,
+                     const struct out_run *run, struct path *path, const struct job *job,
+                     uint32_t k)
 {
     struct raster_pt pt;
     cp_real f = feed_of(job, path, run->start_k, k);
@@ -60,6 +124,15 @@ static int put_point(char *out, size_t cap, size_t *pos, const struct out_run *r
     put_mm(out, cap, pos, pt.p.y);
     (void)fmt_str(out, cap, pos, " Z");
     put_mm(out, cap, pos, pt.p.z);
+    if (job->toolaxis != JOB_TOOLAXIS_OFF) {
+        e = put_axis(g, run, path, job, k, &pt, out, cap, pos);
+        if (e != CP_OK) {
+            return e;
+        }
+        g->prev_ok = 1u;
+        g->prev_k = k;
+        g->prev_p = pt.p;
+    }
     if (k == run->start_k || f != feed_of(job, path, run->start_k, k - 1u)) {
         (void)fmt_str(out, cap, pos, " F");
         (void)fmt_real(out, cap, pos, f, CP_R(1.0));
@@ -119,7 +192,7 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
     if (idx < run->lead) {
         e = put_item(out, cap, &pos, run, path, job, (enum out_gcode_item)g->lead[idx]);
     } else if (idx - run->lead < g->points) {
-        e = put_point(out, cap, &pos, run, path, job, run->start_k + (idx - run->lead));
+        e = put_point(g, out, cap, &pos, run, path, job, run->start_k + (idx - run->lead));
     } else {
         e = put_item(out, cap, &pos, run, path, job,
                      (enum out_gcode_item)g->trail[idx - run->lead - g->points]);
@@ -148,7 +221,9 @@ int out_gcode_check(const struct job *job)
     if (!job->safe_set) {
         return CP_ST_NO_SAFE;
     }
-    if (job->checksum && !machine_dialect(job->machine)->checksum) {
+    if ((job->checksum && !machine_dialect(job->machine)->checksum) ||
+        (job->toolaxis == JOB_TOOLAXIS_AC && !machine_dialect(job->machine)->ac) ||
+        (job->toolaxis == JOB_TOOLAXIS_IJK && !machine_dialect(job->machine)->ijk)) {
         return CP_ST_DIALECT;
     }
     return CP_ST_OK;
@@ -202,6 +277,8 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     g->rxbuf = d->acks ? (job->rxbuf != 0u ? job->rxbuf : d->rxbuf) : 0u;
     g->points = path_count(path) - run->start_k;
     g->t_poll = run->t_last;
+    g->prev_ok = 0u;
+    toolaxis_init(&g->axis, job->lead, job->side);
     plan_program(g, run, job);
     run->end = run->lead + g->points + g->ntrail;
     /* what the stream will hold, for hosts and judges */

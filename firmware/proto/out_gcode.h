@@ -10,7 +10,8 @@
  *   points       "G1 X.. Y.. Z.. F<plunge>" (the plunge to the first point), then one
  *                "G1 X.. Y.. Z.." per point; F only where the feed changes (the cut's after
  *                the plunge, the link feed on link points and back), 4 decimals (0.1 um),
- *                F exactly as given (fmt_real)
+ *                F exactly as given (fmt_real); with TOOLAXIS " A.. C.." (3 decimals,
+ *                degrees) or " I.. J.. K.." (4 decimals) after Z (toolaxis.h)
  *   trail lines  "G0 Z<safe>" (retract), [M5 (SPINDLE)], the dialect's end (M2 | M400)
  * With checksums every line is "N<i> <line>*<cs>", i the stream index, cs the XOR of the
  * bytes before '*', in decimal (Marlin). The "[RUN:...]" line is for the host: it goes up
@@ -34,6 +35,7 @@
 #include "job.h"
 #include "machine.h"
 #include "out.h"
+#include "toolaxis.h"
 
 /* The machine must answer a line within this time, ms (else CP_ST_TIMEOUT). */
 #ifndef OUT_GCODE_PEER_TIMEOUT_MS
@@ -51,9 +53,10 @@
 #ifndef OUT_GCODE_POLL_MS
 #define OUT_GCODE_POLL_MS 2000u
 #endif
-/* The longest stream line, bytes: "N<n> G1 X.. Y.. Z.. F..*<cs>\n" stays under 80
- * (out_gcode.c). RXBUF may not be smaller: a line must fit an empty machine buffer. */
-#define OUT_GCODE_LINE_MAX 96
+/* The longest stream line, bytes: "N<n> G1 X.. Y.. Z.. I.. J.. K.. F..*<cs>\n" (out_gcode.c:
+ * the formal worst case; real lines are 30-60). RXBUF may not be smaller: a line must
+ * fit an empty machine RX buffer. */
+#define OUT_GCODE_LINE_MAX 120
 /* Lines before the points and after them (enum out_gcode_item), at most. */
 #define OUT_GCODE_LEAD_MAX 8u
 #define OUT_GCODE_TRAIL_MAX 3u
@@ -93,11 +96,16 @@ struct out_gcode {
     uint32_t pend_idx;              /* stream index of the line in pend[] */
     char pend[OUT_GCODE_LINE_MAX];  /* the next line, built once, waiting for RXBUF room */
     uint32_t t_poll;                /* ms of the last POLL byte (or answer) */
+    /* TOOLAXIS: the angles, and the last point written (its neighbour gives the travel) */
+    struct toolaxis axis;
+    uint8_t prev_ok;                /* prev_p is point prev_k (placed) */
+    uint32_t prev_k;
+    struct cp_vec3 prev_p;
 };
 
 /* Whether `job` can be written as a program (called by RUN before anything else):
  * CP_ST_OK, CP_ST_NO_FEED (FEED not set), CP_ST_NO_SAFE (SAFE not given), CP_ST_DIALECT
- * (CHECKSUM ON for a dialect without checksums). */
+ * (CHECKSUM ON or a TOOLAXIS form the dialect does not take, machines.def). */
 int out_gcode_check(const struct job *job);
 
 /* Start a run of `path` for `job` (format GCODE, out_gcode_check passed): run->start_k is
@@ -110,8 +118,8 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
 
 /* Emit at most one line: the next one if `sending` (the run is not held), it is below
  * run->end, fewer than OUT_GCODE_RING lines are in flight and the machine's RX buffer
- * has room for it. now: ms. Appends the line to out[0..cap) (cap >=
- * OUT_GCODE_LINE_MAX) and stores its length in *len (0 when nothing was sent).
+ * has room for it. now: ms. Appends the line to out[0..cap) when it fits there (else it
+ * waits in pend[] for a later call) and stores its length in *len (0: nothing sent).
  * Returns OUT_GOING, or the status that ends the run: CP_ST_OK (every line answered),
  * CP_ST_TIMEOUT, CP_ST_NUMERIC (a point could not be computed). */
 int out_gcode_emit(struct out_gcode *g, struct out_run *run, struct path *path,

@@ -420,12 +420,9 @@ static int run_emit(struct proto *p)
     switch ((enum job_format)p->fmt) {
     case JOB_GCODE:
         if (p->prog_link == JOB_LINK_MACHINE) { /* the program goes down the machine link */
-            if (machine_link_room(&p->mach) < OUT_GCODE_LINE_MAX) {
-                return 0;
-            }
+            size_t room = machine_link_room(&p->mach); /* a line waits until it fits */
             st = out_gcode_emit(&p->out.gcode, &p->run, &p->path, &p->job, now, sending,
-                                p->mach.tx + p->mach.tx_len, MACHINE_TX_BUF - p->mach.tx_len,
-                                &n);
+                                p->mach.tx + p->mach.tx_len, room, &n);
             p->mach.tx_len = (uint16_t)(p->mach.tx_len + n);
             machine_poll(p, now);
             if (st != OUT_GOING) {
@@ -590,7 +587,8 @@ static void exec_line(struct proto *p)
             return;
         }
     }
-    if (st == JOB_NOT_MINE && p->mach.uart != NULL) { /* pass-through (proto.h) */
+    if (st == JOB_NOT_MINE && p->mach.uart != NULL && p->job.link == JOB_LINK_MACHINE) {
+        /* pass-through (proto.h): the cell is wired (LINK MACHINE) */
         machine_link_put(&p->mach, p->line, p->line_len);
         machine_link_put(&p->mach, "\n", 1u);
         p->pass = 1u;
