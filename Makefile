@@ -31,7 +31,8 @@ CP_DEFS ?=
 INC := $(FW_INC) -Itests $(CP_DEFS)
 
 FW_SRC   := $(wildcard firmware/*/*.c)
-TEST_SRC := $(filter-out tests/fuzz_%.c tests/fw_fake.c,$(wildcard tests/*.c))
+# (tests/test_sim_machine.c is a program of its own: make sim-machine, mk/sim.mk)
+TEST_SRC := $(filter-out tests/fuzz_%.c tests/fw_fake.c tests/test_sim_machine.c,$(wildcard tests/*.c))
 
 HOST_CFLAGS := $(WARN) $(FPFLAGS) -O2 -g $(INC)
 # Firmware objects also prove the stack bound per function.

@@ -7,6 +7,7 @@
 #   build/host/fw_native   firmware/*.c + hal/posix (protocol on fd 0, or --tty PATH)
 #   build/host/host_sim    host_sim/*.c (creates the pty, runs native/QEMU/any program)
 #   build/host/fw_fake     tests/fw_fake.c (misbehaving firmwares for sim-robust)
+#   build/host/test_sim_machine  tests/test_sim_machine.c + host_sim/sim_machine*.c
 
 SIM_POSIX   := -D_XOPEN_SOURCE=600
 SIM_CFLAGS  := $(WARN) -O2 -g $(SIM_POSIX) $(FW_INC) -Ihost_sim -Itests
@@ -26,7 +27,7 @@ HOSTSIM_OBJ := $(patsubst host_sim/%.c,$(BUILD)/host/host_sim_obj/%.o,$(HOSTSIM_
 SIM_MODELS  := $(shell sed -n 's/^CP_MODEL[^,]*, *\([a-z0-9_]*\),.*/\1/p' firmware/models/models.def)
 HOSTSIM_REF := $(patsubst %,$(BUILD)/host/host_sim_obj/ref_%.o,$(SIM_MODELS))
 
-.PHONY: fw-native host-sim fw-fake sim-native sim-qemu sim-robust
+.PHONY: fw-native host-sim fw-fake sim-native sim-qemu sim-robust sim-machine
 
 $(BUILD)/host/posix/%.o: hal/posix/%.c
 	@mkdir -p $(@D)
@@ -37,6 +38,19 @@ $(BUILD)/host/host_sim_obj/%.o: host_sim/%.c
 	$(Q)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
 
 ##
+## sim-machine: the grbl 1.1h and Marlin 2.x machine emulators (host_sim/sim_machine*.c)
+##              against their self-test tests/test_sim_machine.c (word "machine")
+SIM_MACHINE_OBJ := $(patsubst host_sim/%.c,$(BUILD)/host/host_sim_obj/%.o,$(wildcard host_sim/sim_machine*.c))
+sim-machine: $(BUILD)/host/test_sim_machine
+	$(Q)$(BUILD)/host/test_sim_machine
+
+$(BUILD)/host/test_sim_machine: $(BUILD)/host/sim_machine/test_sim_machine.o $(SIM_MACHINE_OBJ)
+	$(Q)$(CC) -o $@ $^ -lm
+
+$(BUILD)/host/sim_machine/test_sim_machine.o: tests/test_sim_machine.c
+	@mkdir -p $(@D)
+	$(Q)$(CC) $(SIM_CFLAGS) -MMD -MP -c $< -o $@
+
 ## fw-native: build build/host/fw_native (firmware/*.c + hal/posix, serves the protocol on a pty)
 fw-native: $(BUILD)/host/fw_native
 $(BUILD)/host/fw_native: $(HOST_FW_OBJ) $(POSIX_OBJ)
