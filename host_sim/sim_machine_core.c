@@ -683,6 +683,9 @@ void sm_rules_final(const struct sim_machine *m, struct sim_machine_verdict *v, 
     v->units_mm = r->g21_seen && !r->g20_seen;
     v->absolute = r->g90_seen && !r->g91_seen;
     v->spindle_off_at_end = !r->spindle_ever || (r->last_spindle_m5 && !r->spindle_on);
+    if (!r->spindle_ever) {
+        v->feed_spindle_off = 0; /* counted only in a program that uses a spindle (header) */
+    }
     v->ended_safe = program_end && end_ok;
     if (r->spindle_ever && r->spindle_off_line != 0 &&
         (r->problem_line == 0 || r->spindle_off_line < r->problem_line)) {
