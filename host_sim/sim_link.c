@@ -102,6 +102,10 @@ static int link_wait(struct sim_link *l, short events, uint64_t deadline_ms)
         return SIM_LINK_TIMEOUT;
     }
     ms = deadline_ms - now > SIM_LINK_SLICE_MS ? SIM_LINK_SLICE_MS : (int)(deadline_ms - now);
+    if (l->idle != NULL) {
+        l->idle(l->idle_ctx);
+        ms = ms > 1 ? 1 : ms;
+    }
     pf.fd = l->pty->master;
     pf.events = events;
     pf.revents = 0;

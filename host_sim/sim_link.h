@@ -64,6 +64,10 @@ struct sim_link {
     uint64_t t0;                 /* origin of the transcript times */
     unsigned max_lines;          /* non-terminal lines per reply (flood limit) */
     unsigned long max_bytes;     /* bytes per reply without a terminal (flood limit) */
+    /* called on every wait (then each wait is at most 1 ms): host_sim's cell pumps its
+     * machine link there, so passed-through lines get their machine's answers; NULL: none */
+    void (*idle)(void *ctx);
+    void *idle_ctx;
     /* receive state */
     unsigned char buf[4096];
     size_t len;                  /* bytes in buf */

@@ -193,8 +193,48 @@ static int run_fixed4(const char *s, const char **end, int32_t *v)
     return 0;
 }
 
-/* "G1 X.. Y.. Z.. [F..]" -> 0 and the point; -1 if malformed */
-static int run_parse_g1(const char *s, int32_t xyz[3])
+/* " A<deg> C<deg>" (TOOLAXIS AC) or " I.. J.. K.." (TOOLAXIS IJK) after Z: the unit tool
+ * axis in *n (1/32767, as a frame's normal; toolaxis.h's a = (sin A sin C, -sin A cos C,
+ * cos A)); *s past them. 1 if the words were there, 0 if none, -1 if malformed. */
+static int run_parse_axis(const char **s, int16_t n[3])
+{
+    static const char ac[2] = {'A', 'C'}, ijk[3] = {'I', 'J', 'K'};
+    double v[3], a[3];
+    int32_t q;
+    int i, m;
+    const char *w = **s == 'A' ? ac : **s == 'I' ? ijk : NULL;
+    if (w == NULL) {
+        return 0;
+    }
+    m = w == ac ? 2 : 3;
+    for (i = 0; i < m; i++) {
+        if (**s != w[i] || run_fixed4(*s + 1, s, &q) != 0) {
+            return -1;
+        }
+        v[i] = q / 1e4;
+        if (**s == ' ') {
+            (*s)++;
+        }
+    }
+    if (w == ac) {
+        double A = v[0] * 3.14159265358979323846 / 180.0, C = v[1] * 3.14159265358979323846 / 180.0;
+        a[0] = sin(A) * sin(C);
+        a[1] = -sin(A) * cos(C);
+        a[2] = cos(A);
+    } else {
+        a[0] = v[0];
+        a[1] = v[1];
+        a[2] = v[2];
+    }
+    for (i = 0; i < 3; i++) {
+        n[i] = (int16_t)lround(a[i] * 32767.0);
+    }
+    return 1;
+}
+
+/* "G1 X.. Y.. Z.. [A.. C.. | I.. J.. K..] [F..]" -> 0 and the point (and *has_n with the
+ * tool axis in n); -1 if malformed */
+static int run_parse_g1(const char *s, int32_t xyz[3], int16_t n[3], int *has_n)
 {
     static const char ax[3] = {'X', 'Y', 'Z'};
     int i;
@@ -211,6 +251,10 @@ static int run_parse_g1(const char *s, int32_t xyz[3])
         } else if (*s != '\0' || i < 2) {
             return -1;
         }
+    }
+    *has_n = run_parse_axis(&s, n);
+    if (*has_n < 0) {
+        return -1;
     }
     if (*s == 'F') {
         int32_t f;
@@ -293,6 +337,8 @@ static void run_machine_line(struct run *u, char *s, unsigned mlen)
     const char *body = s;
     char rep[40];
     int32_t xyz[3];
+    int16_t axis[3];
+    int has_axis = 0;
     u->unanswered += mlen;
     if (u->unanswered > r->max_inbuf) {
         r->max_inbuf = u->unanswered;
@@ -348,10 +394,12 @@ static void run_machine_line(struct run *u, char *s, unsigned mlen)
     if (strncmp(body, "G1 ", 3) != 0 && strchr("GM", body[0]) != NULL && body[0] != '\0') {
         u->preamble++; /* the program around the points: modes, spindle, rapids, end */
         sim_out_gcode(body);
-    } else if (run_parse_g1(body, xyz) == 0) {
+    } else if (run_parse_g1(body, xyz, axis, &has_axis) == 0) {
         uint32_t k = (r->header ? r->first : 0u) + (uint32_t)u->g1;
+        struct sim_out_pt at;
         sim_out_gcode(body);
-        run_point(u, k, xyz, NULL, 0, 0);
+        run_line_index(r, k, &at); /* TOOLAXIS: the axis is judged as the point's normal */
+        run_point(u, k, xyz, has_axis ? axis : NULL, at.line, at.index);
         u->g1++;
     } else {
         r->bad_lines++;

@@ -4,7 +4,7 @@
 # docs/HOST_SIM.md).
 # SPDX-License-Identifier: MIT
 #
-# Usage: sh host_sim/sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example
+# Usage: sh host_sim/sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example|machines
 # Each case is one or two host_sim sessions (exit 0 required) plus, for resume and
 # identical, a byte comparison. Prints one line per case and closes with
 # "<suite>: N passed, N failed"; exits 1 if any case failed.
@@ -199,8 +199,38 @@ example)
     if [ $r0 -eq 1 ] && grep -q "FAIL judge plane-point" "$OUT/example_plane_wrong.out"; then r0=0; else r0=1; fi
     result example_plane_judge_fails $r0 "(point 10 moved 5 um: $(grep -o "FAIL judge plane-[a-z]*" "$OUT/example_plane_wrong.out" | tr '\n' ' '))"
     ;;
+machines)
+    # two-link cells (--machine): every demo and judged job in both dialects, natively
+    # (FRAMES jobs run as programs: host_sim makes FORMAT FRAMES GCODE), the emulated
+    # machine's motion at 1/200 of real time (its planner fills, oks wait for it)
+    for job in paper_gcode paper_frames boss_gcode boss_frames placed_gcode placed_frames \
+               model_gsr_gcode model_gsr_frames model_gsr_placed model_channel_gcode \
+               model_channel_frames model_drc_curve model_drc_fillet; do
+        hs "grbl_$job" native --job "$J/$job.job" --machine grbl --machine-time 0.005
+        result "grbl_$job" $? "$(figs "grbl_$job")"
+        hs "marlin_$job" native --job "$J/$job.job" --machine marlin --advanced-ok \
+            --machine-time 0.005
+        result "marlin_$job" $? "$(figs "marlin_$job")"
+    done
+    # checksums are Marlin's (grbl refuses them: error:43, tests/test_machine.c)
+    hs marlin_paper_gcode_cs native --job "$J/paper_gcode_cs.job" --machine marlin
+    result marlin_paper_gcode_cs $? "$(figs marlin_paper_gcode_cs)"
+    # homing on: grbl boots in ALARM, $H passes through the firmware
+    hs grbl_homing native --job "$J/cell_homing.job" --machine grbl --homing
+    result grbl_homing $? "$(figs grbl_homing)"
+    # the Cortex-M4F image: the machine link is UART1 (QEMU's second -serial)
+    if command -v "$QEMU" >/dev/null 2>&1; then
+        hs qemu_grbl_paper_gcode qemu --job "$J/paper_gcode.job" --machine grbl
+        result qemu_grbl_paper_gcode $? "$(figs qemu_grbl_paper_gcode)"
+        hs qemu_marlin_model_drc_fillet qemu --job "$J/model_drc_fillet.job" --machine marlin \
+            --advanced-ok
+        result qemu_marlin_model_drc_fillet $? "$(figs qemu_marlin_model_drc_fillet)"
+    else
+        result qemu_cells 1 "($QEMU not found: apt-get install qemu-system-arm)"
+    fi
+    ;;
 *)
-    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example" >&2
+    echo "usage: sim_suite.sh run-native|run-qemu|baud|faults|resume|identical|models|example|machines" >&2
     echo "sim-suite: 0 passed, 1 failed"; exit 2
     ;;
 esac

@@ -115,6 +115,12 @@ example-model: $(BUILD)/host/host_sim
 	    $(BUILD)/example/host/fw_native
 	$(Q)BUILD=$(BUILD) sh host_sim/sim_suite.sh example
 
+## sim-machines: two-link cells: every demo and judged job in both dialects against host_sim's grbl 1.1h
+##               and Marlin 2.x machines (sim_machine.h), natively and on QEMU (UART1) (word "machines")
+.PHONY: sim-machines
+sim-machines: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
+	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh machines
+
 ## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")
 sim-run-native: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	$(Q)BUILD=$(BUILD) sh host_sim/sim_suite.sh run-native

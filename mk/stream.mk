@@ -18,12 +18,15 @@ demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	        | grep -v '^  PASS' || exit 1; done
 	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge)"
 
-## sim-rs274: LinuxCNC's rs274 runs the streamed G-code (paper; boss with a ball tool; the paper
-##            placed on an inclined face) with 0 errors and every STRAIGHT_FEED equals the
-##            received point to 0.1 um (word "rs274")
+## sim-rs274: LinuxCNC's rs274 runs every G-code program of the suite (the paper; the boss with a
+##            ball tool; placed on an inclined face; the GSR, channel and DRC jobs; 5-axis A/C words
+##            with a spindle and a work offset; a job that first lacks FEED) with 0 errors: every
+##            STRAIGHT_FEED equals the received point to 0.1 um, every STRAIGHT_TRAVERSE is at the
+##            safe height above the cut, A/C equal the judged tool axis (word "rs274")
 sim-rs274: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/rs274
-	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode placed_gcode; do \
+	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode placed_gcode model_gsr_gcode model_channel_gcode \
+	    model_drc_curve axis5_ac no_feed; do \
 	    if $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/rs274/$$j.csv --gcode $(BUILD)/rs274/$$j.ngc > $(BUILD)/rs274/$$j.log 2>&1; then \
 	        out=$$(sh tools/rs274_check.sh $(BUILD)/rs274/$$j.ngc $(BUILD)/rs274/$$j.csv); echo "$$out" | sed '$$d'; \
