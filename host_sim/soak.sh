@@ -65,6 +65,10 @@ job() { # name format lines...
         cs) echo "FORMAT GCODE   #! expect ok"; echo "CHECKSUM ON   #! expect ok" ;;
         gcode) echo "FORMAT GCODE   #! expect ok" ;;
         esac
+        # a program needs a feed and a safe height (docs/PROTOCOL.md "The program");
+        # the jobs' own FEED, when they have one, comes earlier and stays
+        case " $* " in *" FEED "*) ;; *) echo "FEED 600   #! expect ok" ;; esac
+        echo "SAFE 60   #! expect ok"
         echo "RUN   #! expect ok"
     } > "$OUT/jobs/$n.job"
     echo "$n $fmt" >> "$OUT/jobs/list"

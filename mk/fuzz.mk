@@ -12,7 +12,7 @@
 # Seeds: tests/corpus/<t>/ (read only: libFuzzer writes new inputs to $(BUILD)/fuzz/corpus/<t>).
 
 # reply_<dialect>: tests/fuzz_reply.c built once per machine dialect (machines.def)
-FUZZ_DIALECTS := grbl marlin generic linuxcnc
+FUZZ_DIALECTS := $(shell sed -n 's/^CP_MACHINE.\([A-Z]*\),.*/\1/p' firmware/job/machines.def | tr A-Z a-z)
 FUZZ_TARGETS := cmd num frame run $(patsubst %,reply_%,$(FUZZ_DIALECTS))
 FUZZ_SECONDS ?= 60
 # the reply_<dialect> targets run a count, not a time: at least 10^6 executions each in

@@ -575,3 +575,47 @@ int test_machine_toolaxis(void)
     CHECK(cmd("TOOLAXIS OFF 1", "error:3 "));
     return 0;
 }
+
+/* Reconnecting (docs/PROTOCOL.md "Reconnecting"): a host that comes back during a run on
+ * the machine link sends "\n" (ends a partial line it may have left: no reply while a run
+ * is on) and "?"; the run went on without it; once "?" says <Idle> the firmware takes
+ * commands again. No abort byte is needed. */
+int test_machine_reconnect(void)
+{
+    char l[200];
+    int i, run_report = 0;
+    CHECK(rig(1));
+    CHECK(load(paper));
+    CHECK(cmd("MACHINE GRBL", "ok"));
+    CHECK(cmd("LINK MACHINE", "ok"));
+    CHECK(cmd("FEED 600", "ok"));
+    CHECK(start_run());
+    send_to(&rg.host, "CURVE LI"); /* the old host died mid-line */
+    for (i = 0; i < 50; i++) {
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            send_to(&rg.mach, "ok\n");
+        }
+        (void)proto_poll(&rg.p);
+    }
+    rg.host.scan = rg.host.m.out_len; /* what it would have read is lost */
+    send_to(&rg.host, "\n?");         /* the new host: "CURVE LI" ends, error:7 (busy) */
+    for (i = 0; i < 20 && !run_report; i++) {
+        if (line_of(&rg.host, l, sizeof l, 5)) {
+            run_report = strncmp(l, "<Run|", 5) == 0;
+            CHECK(run_report || strncmp(l, "error:7 ", 8) == 0);
+        }
+    }
+    CHECK(run_report);
+    for (i = 0; i < 400000 && rg.p.state != PROTO_IDLE; i++) {
+        while (line_of(&rg.mach, l, sizeof l, 0)) {
+            send_to(&rg.mach, "ok\n");
+        }
+        (void)proto_poll(&rg.p);
+    }
+    CHECK(rg.p.state == PROTO_IDLE);
+    rg.host.scan = rg.host.m.out_len;
+    send_to(&rg.host, "?");
+    CHECK(line_of(&rg.host, l, sizeof l, 20) && strcmp(l, "<Idle>") == 0);
+    CHECK(cmd("$I", "ok"));
+    return 0;
+}

@@ -67,14 +67,16 @@ void *selftest_inject_alloc(size_t n) { return malloc(n); }' "" no; then
 else bad "malloc copy did not build"; fi
 
 # The double copy links newlib's sqrt wrapper, which sets errno: that pulls in newlib's
-# reentrancy data (_impure_ptr, 104 B of .data) that no product image has. Its RAM length
-# is the budget + 512 B (a later --defsym wins), so it is the guard that judges it, not a
-# RAM overflow of the scratch image.
+# reentrancy data (_impure_ptr, 104 B of .data) and the soft-double library (a few KB)
+# that no product image has. Its RAM and flash lengths are the budgets + 512 B / + 8 KB (a
+# later --defsym wins), so it is the guard that judges it, not an overflow of the scratch
+# image.
 ram=$(printf '%s\n' "$M4F_LDBUDGET" | sed -n 's/.*CP_RAM=\([0-9]*\).*/\1/p')
+flash=$(printf '%s\n' "$M4F_LDBUDGET" | sed -n 's/.*CP_FLASH=\([0-9]*\).*/\1/p')
 if build double '#include <math.h>
 float selftest_inject_double(float x);
 float selftest_inject_double(float x) { return (float)sqrt((double)x * 1.5); }' \
-        "-Wl,-u,selftest_inject_double -Wl,--defsym=CP_RAM=$((ram + 512))" yes; then
+        "-Wl,-u,selftest_inject_double -Wl,--defsym=CP_RAM=$((ram + 512)) -Wl,--defsym=CP_FLASH=$((flash + 8192))" yes; then
     expect fail double __aeabi_d "injected double sqrt: fw.elf" "$S/double/fw.elf"
     expect fail double __aeabi_ "injected double sqrt: M4F objects" "$S"/double/m4f/*.o
 else bad "double copy did not build"; fi

@@ -62,7 +62,7 @@ check(r.count(b"ok\n") == n and r.count(b"[VER:") == n, "%d pipelined $I -> %d o
 # 4. a real job: the deepest firmware paths (canal_path_init's walk, streaming) run
 #    before the stack is read; act as a machine that answers ok per G-code line
 job = [b"CURVE ARC 0 0 3 0 360", b"RADIUS COS 5.5 10.5 2", b"LINES 3 -25 10", b"TOL 20",
-       b"TOOL BALL 1", b"CIRCLES 24 -20 10", b"CHECKSUM ON"]
+       b"TOOL BALL 1", b"CIRCLES 24 -20 10", b"CHECKSUM ON", b"FEED 600", b"SAFE 40"]
 okc = 0
 for line in job:
     os.write(master, line + b"\n")

@@ -63,10 +63,10 @@ def main():
     deadline = time.monotonic() + 120.0
     while True:
         line = readline(port, deadline)
-        if line.startswith("G") or line.startswith("N"):
+        if line.startswith(("G", "M", "N")):  # a program line (docs/PROTOCOL.md)
             if out:
                 out.write(line + "\n")
-            if " X" in line:
+            if "G1 " in line:  # one feed move per point; G0 lines are the safe moves
                 points += 1
             port.write(b"ok\n")  # the machine accepted the line
         elif line == "ok":
@@ -75,8 +75,7 @@ def main():
             print("RUN -> %s" % line)
             return 1
     if out:
-        out.write("M2\n")
-        out.close()
+        out.close()  # the program ends with its own M2
     print("pyserial: %d points, RUN ok" % points)
     return 0
 

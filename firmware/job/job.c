@@ -467,14 +467,14 @@ static int job_place_cmd(struct job *j, struct job_args *a)
 }
 
 /* The commands of owner JOB, their arguments checked (job_args_of). */
-/* FEED f [plunge [link]]: each 0 (not set: only f) or JOB_FEED_MIN..JOB_FEED_MAX; plunge
- * and link default to f. */
+/* FEED f [plunge [link]]: f 0 (not set: alone) or JOB_FEED_MIN..JOB_FEED_MAX, plunge and
+ * link in that range too; plunge and link default to f. */
 static int job_feed(struct job *j, struct job_args *a)
 {
     unsigned i;
     for (i = 0; i < a->na; i++) {
         cp_real f = a->v[i];
-        if (!(f == CP_R(0.0) && i == 0u) && !(f >= JOB_FEED_MIN && f <= JOB_FEED_MAX)) {
+        if (!(f == CP_R(0.0) && a->na == 1u) && !(f >= JOB_FEED_MIN && f <= JOB_FEED_MAX)) {
             return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + i,
                           i == 0u ? "0 or 0.001..1e6" : "0.001..1e6");
         }
@@ -522,8 +522,8 @@ static int job_own_command(struct job *j, struct job_args *a)
         j->safe_set = 1u;
         return CP_ST_OK;
     case JOB_CMD_SPINDLE:
-        if (!(v[0] >= CP_R(0.0) && v[0] <= JOB_SPINDLE_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0..100000");
+        if (!(v[0] == CP_R(0.0) || (v[0] >= CP_R(1.0) && v[0] <= JOB_SPINDLE_MAX))) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "0 or 1..100000");
         }
         j->spindle = v[0];
         return CP_ST_OK;

@@ -17,7 +17,8 @@
  *                            it (0: not set, RUN answers error:40)
  *   SAFE z                   the safe height, mm in table coordinates (after PLACE/TILT):
  *                            rapids happen there; GCODE needs it (error:41)
- *   SPINDLE rpm              M3 S<rpm> before the cut, M5 after it (0: no spindle words)
+ *   SPINDLE rpm              M3 S<rpm> before the cut, M5 after it (0: no spindle words;
+ *                            else 1..100000)
  *   WCS G54..G59             the work offset of the program (default G54)
  *   MACHINE GENERIC | GRBL | MARLIN | LINUXCNC   the dialect of the program and of the
  *                            machine's answers (machines.def; default GENERIC)
@@ -91,7 +92,7 @@ enum job_link { JOB_LINK_HOST = 0, JOB_LINK_MACHINE = 1 };
 #define JOB_FEED_MAX CP_R(1.0e6)
 #define JOB_FEED_MIN CP_R(0.001) /* smallest non-zero FEED, mm/min (F is printed exactly) */
 #define JOB_SAFE_MAX CP_R(1000.0) /* SAFE: |z| <= 1 m (mm) */
-#define JOB_SPINDLE_MAX CP_R(100000.0) /* SPINDLE: 0..100000 rpm */
+#define JOB_SPINDLE_MAX CP_R(100000.0) /* SPINDLE: 0 or 1..100000 rpm (printed plainly) */
 #define JOB_PLACE_OFF_MAX CP_R(1000.0) /* PLACE: |x|, |y|, |z| <= 1 m (mm) */
 #define JOB_PLACE_RZ_MAX CP_R(360.0)   /* PLACE: |rz| <= 360 deg */
 #define JOB_TILT_AXIS_MAX CP_R(360.0)  /* TILT: |axis_deg| <= 360 */
@@ -301,8 +302,8 @@ int job_command(struct job *j, const char *line, size_t len);
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first);
 
 /* The job as command lines ($J), item i = 0, 1, ... (fixed order: CURVE, RADIUS, TOOL,
- * LINES or CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE, then the model's
- * job_<m>_dump items): JOB_DUMP_LINE with the command in *a, JOB_DUMP_SKIP (not set: the
+ * LINES or CIRCLES, STEPS or TOL, FEED, FORMAT, RXBUF, CHECKSUM, SURFACE, PLACE, TILT, SAFE,
+ * SPINDLE, WCS, MACHINE, LINK, TOOLAXIS, then the model's job_<m>_dump items): JOB_DUMP_LINE with the command in *a, JOB_DUMP_SKIP (not set: the
  * default), JOB_DUMP_END. Replayed in order after JOB CLEAR they rebuild the job
  * (tests: dump, clear, replay, dump again: identical). */
 int job_dump(const struct job *j, unsigned i, struct job_args *a);

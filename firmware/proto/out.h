@@ -15,7 +15,7 @@
  *   2. one row in firmware/job/outputs.def: enum job_format's JOB_<NAME>, its FORMAT
  *      word and its member of proto.h's union `out` follow from it;
  *   3. one case in each switch on (enum job_format) in proto.c - run_start, run_emit,
- *      run_finish, machine_answer, feed; -Wswitch (-Wall -Werror) names every switch
+ *      run_finish, host_answer, feed; -Wswitch (-Wall -Werror) names every switch
  *      that still lacks it.
  * The modules never read the clock or touch the UART: the engine reads the time where
  * a module needs it (exactly where it always did: the in-memory HAL's clock of the

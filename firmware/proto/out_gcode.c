@@ -118,6 +118,10 @@ static int put_point(struct out_gcode *g, char *out, size_t cap, size_t *pos,
     if (e != CP_OK) {
         return e;
     }
+    if (!(pt.p.z < job->safe)) { /* the rapids at SAFE would cross the part: stop before */
+        g->above_safe = 1u;
+        return CP_ERR_RANGE;
+    }
     (void)fmt_str(out, cap, pos, "G1 X");
     put_mm(out, cap, pos, pt.p.x);
     (void)fmt_str(out, cap, pos, " Y");
@@ -246,10 +250,10 @@ static void plan_program(struct out_gcode *g, struct out_run *run, const struct 
     } else {
         g->lead[n++] = OUT_GCODE_MODES;
     }
+    g->lead[n++] = OUT_GCODE_SAFE; /* up first, then the spindle starts */
     if (job->spindle > CP_R(0.0)) {
         g->lead[n++] = OUT_GCODE_SPINDLE_ON;
     }
-    g->lead[n++] = OUT_GCODE_SAFE;
     g->lead[n++] = OUT_GCODE_ABOVE; /* n <= 8 = OUT_GCODE_LEAD_MAX */
     run->lead = n;
     n = 0;
@@ -278,6 +282,7 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     g->points = path_count(path) - run->start_k;
     g->t_poll = run->t_last;
     g->prev_ok = 0u;
+    g->above_safe = 0u;
     toolaxis_init(&g->axis, job->lead, job->side);
     plan_program(g, run, job);
     run->end = run->lead + g->points + g->ntrail;
@@ -348,7 +353,7 @@ int out_gcode_emit(struct out_gcode *g, struct out_run *run, struct path *path,
         if (g->pend_len == 0u || g->pend_idx != run->next) {
             int n = build_line(g, run, path, job, run->next);
             if (n < 0) {
-                return CP_ST_NUMERIC;
+                return g->above_safe ? CP_ST_ABOVE_SAFE : CP_ST_NUMERIC;
             }
             g->pend_len = (uint8_t)n;
             g->pend_idx = run->next;

@@ -6,7 +6,7 @@
  * The program (docs/PROTOCOL.md "The program"), stream items numbered from 0:
  *   lead lines   [M110 N0 (checksums)] the modes "G21 G90 G17 G94 G54" (SPLIT dialects,
  *                Marlin: "G21", "G90" and, if WCS was given, "G5x", one per line),
- *                [M3 S<rpm> (SPINDLE)], "G0 Z<safe>", "G0 X<x> Y<y>" above the first point
+ *                "G0 Z<safe>", [M3 S<rpm> (SPINDLE)], "G0 X<x> Y<y>" above the first point
  *   points       "G1 X.. Y.. Z.. F<plunge>" (the plunge to the first point), then one
  *                "G1 X.. Y.. Z.." per point; F only where the feed changes (the cut's after
  *                the plunge, the link feed on link points and back), 4 decimals (0.1 um),
@@ -73,8 +73,8 @@ enum out_gcode_item {
     OUT_GCODE_G21,         /* SPLIT dialects: "G21" */
     OUT_GCODE_G90,         /*                 "G90" */
     OUT_GCODE_WCS,         /*                 "G5x" */
-    OUT_GCODE_SPINDLE_ON,  /* "M3 S<rpm>" */
     OUT_GCODE_SAFE,        /* "G0 Z<safe>" (before the cut and the retract after it) */
+    OUT_GCODE_SPINDLE_ON,  /* "M3 S<rpm>" (at the safe height) */
     OUT_GCODE_ABOVE,       /* "G0 X<x> Y<y>": above the first point */
     OUT_GCODE_SPINDLE_OFF, /* "M5" */
     OUT_GCODE_END          /* the dialect's program end */
@@ -95,10 +95,11 @@ struct out_gcode {
     uint8_t pend_len;               /* bytes in pend[], 0 = none */
     uint32_t pend_idx;              /* stream index of the line in pend[] */
     char pend[OUT_GCODE_LINE_MAX];  /* the next line, built once, waiting for RXBUF room */
-    uint32_t t_poll;                /* ms of the last POLL byte (or answer) */
+    uint32_t t_poll;                /* ms of the last POLL byte (or of the first line in flight) */
     /* TOOLAXIS: the angles, and the last point written (its neighbour gives the travel) */
     struct toolaxis axis;
     uint8_t prev_ok;                /* prev_p is point prev_k (placed) */
+    uint8_t above_safe;             /* the run stopped at a point at or above SAFE */
     uint32_t prev_k;
     struct cp_vec3 prev_p;
 };
@@ -121,7 +122,9 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
  * has room for it. now: ms. Appends the line to out[0..cap) when it fits there (else it
  * waits in pend[] for a later call) and stores its length in *len (0: nothing sent).
  * Returns OUT_GOING, or the status that ends the run: CP_ST_OK (every line answered),
- * CP_ST_TIMEOUT, CP_ST_NUMERIC (a point could not be computed). */
+ * CP_ST_TIMEOUT, CP_ST_NUMERIC (a point could not be computed), CP_ST_ABOVE_SAFE (a point
+ * at or above SAFE: the program's rapids there would cross the part; the line is not
+ * sent). */
 int out_gcode_emit(struct out_gcode *g, struct out_run *run, struct path *path,
                    const struct job *job, uint32_t now, int sending, uint8_t *out, size_t cap,
                    size_t *len);

@@ -1,6 +1,7 @@
 /* proto.c - the protocol engine: the link, command lines, real-time bytes, replies, and
  * the run, dispatched to its output format (out_gcode.c, out_frames.c) at one switch per
- * seam: run_start, run_emit, run_finish, machine_answer, feed.
+ * seam: run_start, run_emit, run_finish, host_answer, feed; the machine link's lines
+ * (machine_take, machine_line) and the pass-through.
  * SPDX-License-Identifier: MIT
  */
 #include "proto.h"
@@ -240,7 +241,12 @@ static int run_start(struct proto *p, uint32_t first)
     if (job_ready(&p->job) != CP_ST_OK) {
         return CP_ST_NO_JOB;
     }
-    if (p->job.format == JOB_GCODE) {
+    job_geom_fill(&p->job);
+    err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
+    if (err != CP_OK) {
+        return cp_status_of(err);
+    }
+    if (p->job.format == JOB_GCODE) { /* the geometry first, then what the program needs */
         err = out_gcode_check(&p->job);
         if (err != CP_ST_OK) {
             return err;
@@ -248,11 +254,6 @@ static int run_start(struct proto *p, uint32_t first)
         if (p->job.link == JOB_LINK_MACHINE && p->mach.uart == NULL) {
             return CP_ST_NO_MACHINE_LINK;
         }
-    }
-    job_geom_fill(&p->job);
-    err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
-    if (err != CP_OK) {
-        return cp_status_of(err);
     }
     if (first >= path_count(&p->path)) {
         return CP_ST_RESUME_RANGE;
@@ -297,8 +298,9 @@ static void machine_poll(struct proto *p, uint32_t now)
     }
     if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
         due = out_gcode_poll_due(&p->out.gcode, &p->run, now);
-    } else if (p->pass && (uint32_t)(now - p->t_pass) >= OUT_GCODE_POLL_MS) {
-        p->t_pass = now - OUT_GCODE_POLL_MS / 2u; /* the next in half the time, not at once */
+    } else if (p->pass && (uint32_t)(now - p->t_pass) >= OUT_GCODE_POLL_MS &&
+               (uint32_t)(now - p->t_mpoll) >= OUT_GCODE_POLL_MS) {
+        p->t_mpoll = now; /* (t_pass, the answer's clock, runs on) */
         due = 1;
     }
     if (due) {
@@ -334,7 +336,7 @@ static void machine_line(struct proto *p)
     uint32_t now = hal_uart_now_ms(p->uart);
     if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
         int st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, num, now);
-        if (kind == MACHINE_OTHER) {
+        if (kind == MACHINE_OTHER && len > 0u) {
             relay_wrapped(p, line, len);
         }
         if (st != OUT_GOING) {
@@ -344,7 +346,9 @@ static void machine_line(struct proto *p)
         return;
     }
     if (p->pass) { /* a passed-through host line: its conversation goes up as it is */
-        p->t_pass = now;
+        if (kind != MACHINE_ALIVE) {
+            p->t_pass = now; /* a status report to the poll is life, not an answer */
+        }
         tx_mem(p, line, len);
         tx_str(p, "\n");
         if (kind == MACHINE_OK || kind == MACHINE_ERROR) {
@@ -352,8 +356,9 @@ static void machine_line(struct proto *p)
         }
         return;
     }
-    if (len > 0u) {
-        relay_wrapped(p, line, len); /* unasked: a banner, an alarm, late answers */
+    if (len > 0u && p->lines_seen > 0u) {
+        /* unasked: a banner, an alarm, late answers (nothing before the host has spoken) */
+        relay_wrapped(p, line, len);
     }
 }
 
@@ -363,7 +368,7 @@ static void machine_gone(struct proto *p)
     p->mach.uart = NULL;
     p->pass = 0u;
     if (p->state != PROTO_IDLE && p->prog_link == JOB_LINK_MACHINE) {
-        run_finish(p, CP_ST_LINK_ERROR);
+        run_finish(p, CP_ST_NO_MACHINE_LINK);
     }
 }
 
@@ -391,7 +396,7 @@ static int machine_take(struct proto *p)
         moved = 1;
     }
     now = hal_uart_now_ms(p->uart);
-    if (p->pass && (uint32_t)(now - p->t_pass) > OUT_GCODE_PEER_TIMEOUT_MS &&
+    if (p->pass && (uint32_t)(now - p->t_pass) > PROTO_PASS_TIMEOUT_MS &&
         tx_room(p) >= PROTO_REPLY_MAX) {
         p->pass = 0u;
         reply_status(p, CP_ST_TIMEOUT);
@@ -592,7 +597,7 @@ static void exec_line(struct proto *p)
         machine_link_put(&p->mach, p->line, p->line_len);
         machine_link_put(&p->mach, "\n", 1u);
         p->pass = 1u;
-        p->t_pass = hal_uart_now_ms(p->uart);
+        p->t_pass = p->t_mpoll = hal_uart_now_ms(p->uart);
         return;
     }
     reply_command(p, st == JOB_NOT_MINE ? CP_ST_UNKNOWN_CMD : st);
@@ -606,6 +611,12 @@ static void realtime_to_machine(struct proto *p, uint8_t c)
         machine_dialect(p->job.machine)->poll != 0u && machine_link_room(&p->mach) > 0u) {
         machine_link_put(&p->mach, (const char *)&c, 1u);
     }
+}
+
+/* 1 for the host link's real-time bytes. */
+static int is_realtime(uint8_t c)
+{
+    return c == RT_STATUS || c == RT_HOLD || c == RT_RESUME || c == RT_ABORT;
 }
 
 /* Real-time bytes act at once, outside the line assembly (grbl). During a G-code run up
@@ -640,6 +651,10 @@ static int realtime(struct proto *p, uint8_t c)
         p->line_flags = 0;
         if (p->state != PROTO_IDLE) {
             run_finish(p, CP_ST_ABORTED);
+        }
+        if (p->pass) { /* the passed-through line gets its terminal reply here */
+            p->pass = 0u;
+            reply_status(p, CP_ST_ABORTED);
         }
         return 1;
     default:
@@ -780,8 +795,11 @@ int proto_poll(struct proto *p)
         feed(p, out_frames_tail_next(&p->tail), 1);
         moved = 1;
     }
-    while (p->dump == 0u && p->tail.replay == 0u && !p->pass && p->rx_pos < p->rx_len &&
-           tx_room(p) >= PROTO_REPLY_MAX) { /* <= sizeof rx */
+    while (p->dump == 0u && p->tail.replay == 0u && p->rx_pos < p->rx_len &&
+           tx_room(p) >= PROTO_REPLY_MAX &&
+           (!p->pass || is_realtime(p->rx[p->rx_pos]))) { /* <= sizeof rx */
+        /* while a passed-through line waits, only real-time bytes at the head are taken
+         * ('!', '~', 0x18: a hold or an abort must not wait for a long $H) */
         feed(p, p->rx[p->rx_pos++], 0);
         moved = 1;
     }

@@ -33,9 +33,10 @@
  *
  * Pass-through (two links, idle): a host line that is not one of the firmware's commands
  * goes to the machine as it is ($H, $X, a jog, M3 S1000); the machine's lines come back up
- * as they are until its answer (ok, error:, Error:), and host bytes wait meanwhile (at
- * most OUT_GCODE_PEER_TIMEOUT_MS of machine silence: then error:22). Other machine lines
- * reach the host as "[MACHINE:<line>]".
+ * as they are until its answer (ok, error:, Error:), and host bytes wait meanwhile (but
+ * for real-time bytes: 0x18 cancels the wait with error:20); no answer within
+ * PROTO_PASS_TIMEOUT_MS: error:22. Other machine lines reach the host as
+ * "[MACHINE:<line>]" once the host has spoken. Pass-through needs LINK MACHINE.
  *
  * proto.c keeps the links, the line assembly, the commands, the real-time bytes and the
  * replies; each output format is its own module (out_gcode.h, out_frames.h; out.h has
@@ -73,6 +74,12 @@ struct proto_cfg {
     const struct hal_uart *machine; /* the machine link (LINK MACHINE), NULL: the port has
                                        one link only */
 };
+
+/* A passed-through line must be answered within this time, ms (else error:22); status
+ * reports to the POLL byte do not extend it (a grbl homing cycle is well within it). */
+#ifndef PROTO_PASS_TIMEOUT_MS
+#define PROTO_PASS_TIMEOUT_MS 60000u
+#endif
 
 /* Bytes of a machine's error or alarm line quoted in the host's reply. */
 #define PROTO_FAULT_MAX 32u
@@ -120,7 +127,9 @@ struct proto {
                                 (no host byte is consumed meanwhile) */
     uint8_t fault_len;       /* bytes in fault[] */
     char fault[PROTO_FAULT_MAX]; /* the machine's line that stopped the last run */
-    uint32_t t_pass;         /* ms of the pass-through line, or of the machine's last line */
+    uint32_t t_pass;         /* ms of the pass-through line, or of the machine's last line
+                                other than a status report */
+    uint32_t t_mpoll;        /* ms of the last POLL byte during a pass-through */
 };
 
 /* Initialise p (and an empty job). Returns CP_OK, or CP_ERR_INVAL if cfg or
