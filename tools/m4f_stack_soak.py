@@ -256,7 +256,7 @@ def machine(duration, resend_at=(), frames_mode=False, nak_at=None, garbage=None
                     os.write(master, b"ok\n")
                 else:
                     os.write(master, b"ok\n")
-            elif line.startswith(b"G"):
+            elif line.startswith((b"G", b"M")):
                 pts += 1
                 os.write(master, b"ok\n")
             elif line == b"ok" or line.startswith(b"error:"):
@@ -297,7 +297,7 @@ def send_job(lines):
 
 # 4. checksummed CIRCLES job with a tool; this machine requests two Resends
 job = [b"CURVE ARC 0 0 3 0 360", b"RADIUS COS 5.5 10.5 2", b"TOOL BALL 1", b"CIRCLES 24 -20 10",
-       b"TOL 20", b"FORMAT GCODE", b"CHECKSUM ON"]
+       b"TOL 20", b"FORMAT GCODE", b"CHECKSUM ON", b"FEED 600", b"SAFE 40"]
 okc = send_job(job)
 os.write(master, b"RUN\n")
 pts, term = machine(120, resend_at=(40, 300), wake=True)
@@ -371,10 +371,11 @@ jobs_b = [
     ("ellipse_frames_hangup", ["CURVE ELLIPSE 0 0 4 3 0 360", "RADIUS LINEAR 1 1.5", "LINES 4 -40 40",
                                "STEPS 300", "FORMAT FRAMES"], "hangup@20001"),
     ("bezier_tool_cs_hangup", ["CURVE BEZIER 0 0 10 20 30 -20 40 0", "RADIUS CUBIC 3 4 4 3",
-                               "TOOL BALL 1", "LINES 4 0 80", "STEPS 300", "FEED 900", "FORMAT GCODE",
-                               "CHECKSUM ON"], "hangup@30001"),
+                               "TOOL BALL 1", "LINES 4 0 80", "STEPS 300", "FEED 900", "SAFE 40",
+                               "FORMAT GCODE", "CHECKSUM ON"], "hangup@30001"),
     ("boss_centre_cs", ["CURVE ARC 0 0 25 0 360", "RADIUS COS 1 4 3", "TOOL BALL 2 CENTRE",
-                        "LINES 10 0 85", "TOL 5", "FEED 1200", "FORMAT GCODE", "CHECKSUM ON"], None),
+                        "LINES 10 0 85", "TOL 5", "FEED 1200", "SAFE 40", "FORMAT GCODE",
+                        "CHECKSUM ON"], None),
 ]
 peaks_file = os.path.join(work, "peaks_b.txt")
 if os.path.exists(peaks_file):
