@@ -245,6 +245,8 @@ int test_place_commands(void)
         before.cause_st = j.cause_st;
         before.cause_len = j.cause_len;
         before.cause_limit = j.cause_limit;
+        before.cause_args_min = j.cause_args_min;
+        before.cause_args_max = j.cause_args_max;
         if (st != cases[i].st) {
             printf("  %s -> %d, want %d\n", cases[i].line, st, cases[i].st);
         }

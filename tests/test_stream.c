@@ -628,7 +628,11 @@ int test_stream_error_cause(void)
         {"CURVE SPIRAL 1 2", "error:9 unknown keyword (CURVE SPIRAL)"},
         {"STEPS -4", "error:4 not a number (STEPS -4)"},
         {"CURVE ELLIPSE 0 0 0 25 0 360", "error:6 value out of range"}, /* no cause known */
-        {"CURVE LINE 0 0 1", "error:3 wrong number of arguments"},
+        {"CURVE LINE 0 0 1", "error:3 wrong number of arguments (CURVE: 5 arguments)"},
+        {"PLACE 1 2", "error:3 wrong number of arguments (PLACE: 3..4 arguments)"},
+        {"LINES 3 -10", "error:3 wrong number of arguments (LINES: 3 arguments)"},
+        {"CIRCLES 3 -10", "error:3 wrong number of arguments (CIRCLES: 3..4 arguments)"},
+        {"FORMAT", "error:3 wrong number of arguments (FORMAT: 1 argument)"},
         {"FOO", "error:1 unknown command"},
     };
     char r[160];

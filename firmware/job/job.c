@@ -307,9 +307,12 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
     a->bad = JOB_ARG_NONE;
     a->limit = NULL;
     a->tok_u = 0u;
+    a->args_min = a->args_max = 0u; /* error:3's cause: the arguments it takes */
     switch (r->shape) {
     case JOB_ARGS_NUMBERS:
         if (t->n < 1u + r->min || t->n > 1u + r->max) {
+            a->args_min = r->min;
+            a->args_max = r->max;
             return CP_ST_BAD_ARITY;
         }
         na = t->n - 1u;
@@ -332,6 +335,7 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
     default: /* a word after the keyword: exactly one token for WORD and UINT_OR_WORD */
         if (t->n < 2u ||
             (t->n != 2u && (r->shape == JOB_ARGS_WORD || r->shape == JOB_ARGS_UINT_OR_WORD))) {
+            a->args_min = a->args_max = 1u; /* a word (numbers after it: the word's row) */
             return CP_ST_BAD_ARITY;
         }
         s = word_args(t, r, a, &first, &na, &ntv, &uint);
@@ -341,6 +345,8 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
         return s;
     }
     if (ntv != first + na) {
+        a->args_min = (uint8_t)(first - 1u + na); /* a known word's numbers, or LINES' */
+        a->args_max = (uint8_t)(a->args_min + (has_options(c) ? 1u : 0u));
         return CP_ST_BAD_ARITY;
     }
     if (uint) { /* the first argument is an unsigned number */
@@ -801,6 +807,8 @@ static void job_cause(struct job *j, const struct job_tokens *t, const struct jo
         j->cause_len = (uint8_t)t->ln[k];
     }
     j->cause_limit = a->limit;
+    j->cause_args_min = a->args_min;
+    j->cause_args_max = a->args_max;
 }
 
 int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
@@ -813,6 +821,7 @@ int job_line(struct job *j, const char *line, size_t len, uint32_t *first_k)
     t.line = line;
     j->cause_len = 0u;
     j->cause_limit = NULL;
+    j->cause_args_max = 0u;
     t.n = parse_split(line, len, t.st, t.ln, JOB_MAX_TOKENS);
     /* (parse_split stored at most JOB_MAX_TOKENS tokens: n beyond that is error:3) */
     c = t.n > 0u ? find_cmd(line + t.st[0], t.ln[0]) : JOB_CMDS;

@@ -144,6 +144,8 @@ struct job {
      * not a setting (not dumped): the failing token line[cause_st .. + cause_len) of that
      * line (cause_len 0: none known) and the limit it broke (NULL: none given) */
     uint8_t cause_st, cause_len;
+    uint8_t cause_args_min, cause_args_max; /* error:3: the arguments after the keyword the
+                                               command takes (max 0: not an arity error) */
     const char *cause_limit;
 };
 
@@ -221,6 +223,7 @@ struct job_args {
      * a hook sets it with its error) and the limit it broke (a hook's, NULL if none) */
     uint8_t bad;
     uint8_t tok_v, tok_u; /* (job_line's) token index of v[0] and of the unsigned number */
+    uint8_t args_min, args_max; /* an arity error: the arguments the command takes */
     const char *limit;
 };
 

@@ -119,7 +119,8 @@ static void reply_command(struct proto *p, int code)
 {
     const struct job *j = &p->job;
     size_t kw = 0;
-    if (code == CP_ST_OK || (j->cause_len == 0u && j->cause_limit == NULL)) {
+    if (code == CP_ST_OK ||
+        (j->cause_len == 0u && j->cause_limit == NULL && j->cause_args_max == 0u)) {
         reply_status(p, code);
         return;
     }
@@ -140,6 +141,15 @@ static void reply_command(struct proto *p, int code)
     if (j->cause_limit != NULL) {
         tx_str(p, ": ");
         tx_str(p, j->cause_limit);
+    }
+    if (j->cause_args_max != 0u) { /* "(LINES: 3..4 arguments)" */
+        tx_str(p, ": ");
+        tx_u32(p, j->cause_args_min);
+        if (j->cause_args_max != j->cause_args_min) {
+            tx_str(p, "..");
+            tx_u32(p, j->cause_args_max);
+        }
+        tx_str(p, j->cause_args_max == 1u ? " argument" : " arguments");
     }
     tx_str(p, ")\n");
 }
