@@ -564,6 +564,9 @@ int test_stream_job_dump(void)
          "FORMAT FRAMES", "RXBUF 200", "CHECKSUM ON", NULL},
         {"CURVE BEZIER 0 0 3.3 1e-3 7 -2.123456 10 0.1", "RADIUS LINEAR 4 7", "TOOL BALL 2",
          "LINES 1 0 0", "FEED 1234.5", "PLACE 12.5 -40 3.25 -33.3", "TILT 45 30", NULL},
+        /* the program's commands (issue 17) */
+        {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2", "LINES 3 -25 10", "FEED 600 150 400",
+         "SAFE 25.5", "SPINDLE 12000", "WCS G57", "TOOLAXIS AC 12.5 -3", NULL},
         {"SURFACE DRC", "POINT 0 0", "POINT 10 0.5", "POINT 15.79 1.7395", "THICKEN 4",
          "EDGE ON", "RADIUS LINEAR 4 7", "LINES 5 -40 40", NULL},
         {"SURFACE GSR", "CENTER P0 0 0 0", "CENTER P1 4 0 2", "CENTER P2 8 3 2",
@@ -595,7 +598,7 @@ int test_stream_job_dump(void)
         CHECK(expect_code("RUN", CP_ST_NO_JOB));
         CHECK(replay_dump(d1));
         CHECK(dump_job(d2, sizeof d2));
-        if (strcmp(d1, d2) != 0) {
+        if (strcmp(d1, d2) != 0) { /* (the same after the replay) */
             printf("  job %u: dump\n%s  replayed dump\n%s", (unsigned)i, d1, d2);
             return __LINE__;
         }
@@ -603,6 +606,13 @@ int test_stream_job_dump(void)
             TEST_NOTE("$J of job %u:\n%s", (unsigned)i, d1);
         }
     }
+    /* the cell's wiring (MACHINE, LINK) is dumped and outlives JOB CLEAR */
+    rig_init();
+    CHECK(expect_code("MACHINE MARLIN", 0));
+    CHECK(expect_code("LINK MACHINE", 0));
+    CHECK(expect_code("JOB CLEAR", 0));
+    CHECK(dump_job(d1, sizeof d1));
+    CHECK(strcmp(d1, "MACHINE MARLIN\nLINK MACHINE\n") == 0);
     CHECK(expect_code("$J 1", CP_ST_UNKNOWN_CMD));
     CHECK(expect_code("JOB", CP_ST_BAD_ARITY));
     CHECK(expect_code("JOB RESET", CP_ST_BAD_KEYWORD));
