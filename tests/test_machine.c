@@ -101,6 +101,14 @@ static int load(const char *const *c)
     return 1;
 }
 
+/* A two-link rig with the paper's job for MACHINE m on the machine link, FEED f. */
+static int cell(const char *m, const char *feed)
+{
+    char c[40];
+    snprintf(c, sizeof c, "MACHINE %s", m);
+    return rig(1) && load(paper) && cmd(c, "ok") && cmd("LINK MACHINE", "ok") && cmd(feed, "ok");
+}
+
 /* Send RUN and poll until the run has started (its "[RUN:" header is on the host link). */
 static int start_run(void)
 {
@@ -252,11 +260,7 @@ int test_machine_busy_keepalive(void)
 {
     char l[200];
     int i, busy = 0, lines = 0;
-    CHECK(rig(1));
-    CHECK(load(paper));
-    CHECK(cmd("MACHINE MARLIN", "ok"));
-    CHECK(cmd("LINK MACHINE", "ok"));
-    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cell("MARLIN", "FEED 600"));
     CHECK(cmd("STEPS 1", "ok"));
     CHECK(cmd("LINES 1 0 0", "ok"));
     rg.host.m.tick_ms = 5;
@@ -290,11 +294,7 @@ int test_machine_error_code(void)
 {
     char l[200];
     int i, n = 0;
-    CHECK(rig(1));
-    CHECK(load(paper));
-    CHECK(cmd("MACHINE GRBL", "ok"));
-    CHECK(cmd("LINK MACHINE", "ok"));
-    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cell("GRBL", "FEED 600"));
     CHECK(start_run());
     for (i = 0; i < 20000 && rg.p.state != PROTO_IDLE; i++) {
         while (line_of(&rg.mach, l, sizeof l, 0)) {
@@ -382,11 +382,7 @@ int test_machine_grbl_poll(void)
 {
     char l[200];
     int i, polls = 0, lines = 0, held = 1;
-    CHECK(rig(1));
-    CHECK(load(paper));
-    CHECK(cmd("MACHINE GRBL", "ok"));
-    CHECK(cmd("LINK MACHINE", "ok"));
-    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cell("GRBL", "FEED 600"));
     rg.host.m.tick_ms = 5;
     CHECK(start_run());
     for (i = 0; i < 100000 && rg.p.state != PROTO_IDLE; i++) {
@@ -428,11 +424,7 @@ int test_machine_linuxcnc(void)
     char l[200], fin[200];
     unsigned g1 = 0;
     int i;
-    CHECK(rig(1));
-    CHECK(load(paper));
-    CHECK(cmd("MACHINE LINUXCNC", "ok"));
-    CHECK(cmd("LINK MACHINE", "ok"));
-    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cell("LINUXCNC", "FEED 600"));
     send_to(&rg.host, "RUN\n");
     CHECK(line_of(&rg.host, fin, sizeof fin, 100) && fin[0] == '[');
     fin[0] = '\0';
@@ -584,11 +576,7 @@ int test_machine_reconnect(void)
 {
     char l[200];
     int i, run_report = 0;
-    CHECK(rig(1));
-    CHECK(load(paper));
-    CHECK(cmd("MACHINE GRBL", "ok"));
-    CHECK(cmd("LINK MACHINE", "ok"));
-    CHECK(cmd("FEED 600", "ok"));
+    CHECK(cell("GRBL", "FEED 600"));
     CHECK(start_run());
     send_to(&rg.host, "CURVE LI"); /* the old host died mid-line */
     for (i = 0; i < 50; i++) {

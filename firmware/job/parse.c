@@ -193,3 +193,18 @@ unsigned parse_split(const char *line, size_t len, uint16_t *start, uint16_t *tl
     }
     return nt;
 }
+
+uint16_t parse_trim(char *s, uint16_t n)
+{
+    uint16_t a = 0, b = n, i;
+    while (a < b && s[a] == ' ') {
+        a++;
+    }
+    while (b > a && s[b - 1u] == ' ') {
+        b--;
+    }
+    for (i = a; i < b && a > 0u; i++) {
+        s[i - a] = s[i];
+    }
+    return (uint16_t)(b - a);
+}

@@ -41,6 +41,10 @@ int parse_is(const char *s, size_t n, const char *kw);
 /* 1 if s[0..n) is one of the cnt upper-case keywords kws[0..cnt) (parse_is), else 0. */
 int parse_is_any(const char *s, size_t n, const char *const *kws, unsigned cnt);
 
+/* Remove the spaces at both ends of s[0..n), in place (the rest moves to the front).
+ * Returns the new length. */
+uint16_t parse_trim(char *s, uint16_t n);
+
 /* Longest keyword of commands.def, NUL included (job.c asserts it row by row). */
 #define PARSE_KW_MAX 16u
 

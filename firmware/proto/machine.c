@@ -147,22 +147,6 @@ void machine_link_put(struct machine_link *l, const char *s, size_t n)
     }
 }
 
-/* Remove the spaces at both ends of line[]. */
-static void line_trim(struct machine_link *l)
-{
-    uint16_t a = 0, b = l->line_len, i;
-    while (a < b && l->line[a] == ' ') {
-        a++;
-    }
-    while (b > a && l->line[b - 1u] == ' ') {
-        b--;
-    }
-    for (i = a; i < b && a > 0u; i++) {
-        l->line[i - a] = l->line[i];
-    }
-    l->line_len = (uint16_t)(b - a);
-}
-
 int machine_link_line(struct machine_link *l)
 {
     if (l->uart == NULL) {
@@ -187,7 +171,7 @@ int machine_link_line(struct machine_link *l)
             int skip = c == '\n' && l->last_cr;
             l->last_cr = (uint8_t)(c == '\r');
             if (!skip) {
-                line_trim(l);
+                l->line_len = parse_trim(l->line, l->line_len);
                 l->done = 1u;
                 return 1;
             }

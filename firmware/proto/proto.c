@@ -493,22 +493,6 @@ static int host_answer(struct proto *p)
 /*---------------------------------------------------------------------------
  * Lines
  *-------------------------------------------------------------------------*/
-/* Remove the spaces at both ends of line[]. */
-static void line_trim(struct proto *p)
-{
-    uint16_t a = 0, b = p->line_len, i;
-    while (a < b && p->line[a] == ' ') {
-        a++;
-    }
-    while (b > a && p->line[b - 1u] == ' ') {
-        b--;
-    }
-    for (i = a; i < b && a > 0u; i++) {
-        p->line[i - a] = p->line[i];
-    }
-    p->line_len = (uint16_t)(b - a);
-}
-
 /* $J: the next item of job_dump as "[JOB:<command line>]", or at the end "ok". One item
  * per call (a line fits PROTO_REPLY_MAX: keyword, word, 9 numbers of at most 16 chars,
  * option); the numbers by fmt_real, so the line reads back to the same job. */
@@ -566,7 +550,7 @@ static void exec_line(struct proto *p)
         }
         return;
     }
-    line_trim(p);
+    p->line_len = parse_trim(p->line, p->line_len);
     if (host_answer(p)) {
         return;
     }
