@@ -655,6 +655,291 @@ def sec_offset():
     check("canal tool centre m - r n = spine point of radius R - r (mm)", tool, 1e-9)
 
 
+
+# ------------------------------------------------------------ 7. fixed-step numerics
+
+
+def fixed_transport(cn, N, th0s, scheme="magnus4", dt=np.float64):
+    """the firmware's candidate schemes, every operation in dt (np.float64 or np.float32;
+    the jets are computed in double and rounded to dt): the RMF by double reflection (Wang,
+    Juttler, Zheng, Liu 2008) on the 2N + 1 nodes u_k = k/2N, and M(u) by N fixed steps of
+    Magnus-4 (Simpson nodes) or classical RK4 over the same nodes. Returns per output node
+    i = 0..N the points of the lines th0s, from (u_i, M_i y0) only, and the DR frames."""
+    F = lambda x: dt(x)
+    K = 2 * N
+    X, T, P = [], [], []
+    for k in range(K + 1):
+        u = k / K
+        c, c1, c2 = cn.sp.jet(u)
+        R, Ru, _ = cn.R(u)
+        X.append(c.astype(dt))
+        t = c1.astype(dt)
+        T.append(t / np.sqrt(t @ t))
+        v = np.linalg.norm(c1)
+        # per-node constants: R, a, b and the factor of alpha, beta: R_u / (2 b |c_u|^2)
+        P.append((F(R), F(Ru / v), F(math.sqrt(1 - (Ru / v) ** 2)),
+                  F(Ru / (2 * v * math.sqrt(v * v - Ru * Ru))), c2.astype(dt)))
+    # double reflection: r_{k+1} = H2 H1 r_k (two Householder reflections)
+    r = [cn.N10.astype(dt)]
+    two = F(2)
+    for k in range(K):
+        v1 = X[k + 1] - X[k]
+        c1 = v1 @ v1
+        rL = r[k] - (two / c1) * (v1 @ r[k]) * v1
+        tL = T[k] - (two / c1) * (v1 @ T[k]) * v1
+        v2 = T[k + 1] - tL
+        c2 = v2 @ v2
+        r.append(rL - (two / c2) * (v2 @ rL) * v2 if c2 > 0 else rL)
+
+    def A(k):  # generator per unit u at node k: [[-beta, alpha], [alpha, beta]]
+        f, c2 = P[k][3], P[k][4]
+        n1 = r[k]
+        n2 = np.cross(T[k], n1)
+        al, be = f * (c2 @ n2), f * (c2 @ n1)
+        return np.array([[-be, al], [al, be]], dtype=dt)
+
+    h = F(1.0 / N)
+    M = np.eye(2, dtype=dt)
+    comp = np.zeros((2, 2), dtype=dt)  # Kahan compensation of M's entries
+    Ms = [M]
+    for i in range(N):
+        A0, Am, A1 = A(2 * i), A(2 * i + 1), A(2 * i + 2)
+        if scheme.startswith("magnus4"):
+            Om = (h / F(6)) * (A0 + F(4) * Am + A1) - (h * h / F(12)) * (Am @ (A1 - A0) -
+                                                                          (A1 - A0) @ Am)
+            d2 = Om[0, 0] * Om[0, 0] + Om[0, 1] * Om[1, 0]  # Om^2 = d2 I (traceless)
+            # exp(Om) - I = (C - 1) I + S Om, C = cosh(d), S = sinh(d)/d as series in d2 = d^2
+            # (|d2| <= 1e-2 here: the terms kept leave < 1e-20 in double, < ulp in float);
+            # the increment form keeps the small part's bits (no 1 + small rounding)
+            Cm1 = d2 * (F(1 / 2) + d2 * (F(1 / 24) + d2 * (F(1 / 720) + d2 * F(1 / 40320))))
+            S = F(1) + d2 * (F(1 / 6) + d2 * (F(1 / 120) + d2 * (F(1 / 5040) + d2 * F(1 / 362880))))
+            inc = Cm1 * M + S * (Om @ M)
+        else:
+            K1 = A0 @ M
+            K2 = Am @ (M + (h / two) * K1)
+            K3 = Am @ (M + (h / two) * K2)
+            K4 = A1 @ (M + h * K3)
+            inc = (h / F(6)) * (K1 + two * K2 + two * K3 + K4)
+        if scheme.endswith("kahan"):
+            y = inc - comp
+            t = M + y
+            comp = (t - M) - y
+            M = t
+        else:
+            M = M + inc
+        Ms.append(M)
+    pts = []
+    for i in range(N + 1):
+        k = 2 * i
+        R, a, b = P[k][0], P[k][1], P[k][2]
+        n1 = r[k] - (r[k] @ T[k]) * T[k]
+        n1 = n1 / np.sqrt(n1 @ n1)
+        n2 = np.cross(T[k], n1)
+        row = []
+        for t0 in th0s:
+            y = Ms[i] @ np.array([math.sin(t0 / 2), math.cos(t0 / 2)], dtype=dt)
+            q = y @ y
+            ct, st = (y[1] * y[1] - y[0] * y[0]) / q, (two * y[0] * y[1]) / q
+            row.append(X[k] + R * (-a * T[k] + b * (ct * n1 + st * n2)))
+        pts.append(row)
+    assert pts[-1][0].dtype == dt
+    return pts, r[::2], Ms
+
+
+def ref_points(cn, th0s, N):
+    nodes = list(np.linspace(0.0, 1.0, N + 1))
+    st = ref_lines(cn, th0s, nodes, tol=1e-13)
+    return [[cn.point(u, th[j], N1)[0] for j in range(len(th0s))]
+            for u, (N1, th) in zip(nodes, st)], [N1 for N1, _ in st]
+
+
+LINES8 = [k * TWO_PI / 8 + 0.1 for k in range(8)]
+
+
+def dr_inverse_check(cn, N, dt):
+    """DR forward over 2N steps, then the exact inverse r_k = H1 H2 r_{k+1} back: |r_0 - N10|
+    (Magnus is exactly invertible too: exp(-Om))"""
+    F = lambda x: dt(x)
+    K = 2 * N
+    X = [cn.sp.jet(k / K)[0].astype(dt) for k in range(K + 1)]
+    T = [unit(cn.sp.jet(k / K)[1]).astype(dt) for k in range(K + 1)]
+    r = cn.N10.astype(dt)
+    two = F(2)
+    refl = lambda v, x: x - (two / (v @ v)) * (v @ x) * v
+    for k in range(K):
+        v1 = X[k + 1] - X[k]
+        v2 = T[k + 1] - refl(v1, T[k])
+        r = refl(v2, refl(v1, r))
+    for k in range(K - 1, -1, -1):
+        v1 = X[k + 1] - X[k]
+        v2 = T[k + 1] - refl(v1, T[k])
+        r = refl(v1, refl(v2, r))
+    return float(np.linalg.norm(r.astype(float) - cn.N10))
+
+
+def curve_kt(sp, u, e=1e-5):
+    """curvature, torsion and speed of the spine at u (c_uuu by a central difference)"""
+    c, c1, c2 = sp.jet(u)
+    c3 = (sp.jet(u + e)[2] - sp.jet(u - e)[2]) / (2 * e)
+    x = np.cross(c1, c2)
+    v = np.linalg.norm(c1)
+    xx = x @ x
+    return math.sqrt(xx) / v**3, ((x @ c3) / xx if xx > 1e-300 else 0.0), v
+
+
+def q_dr(sp, u, e=2e-3):
+    """the double-reflection error density Q = k^2 t^3 + k k_s t_s + 2 k_s^2 t - k k_ss t
+    (s-derivatives by 4th-order differences in u with the chain rule)"""
+    vals = [curve_kt(sp, u + j * e) for j in (-2, -1, 0, 1, 2)]
+    k, t, v = vals[2]
+    d1 = lambda q: (q[0] - 8 * q[1] + 8 * q[3] - q[4]) / (12 * e)
+    d2 = lambda q: (-q[0] + 16 * q[1] - 30 * q[2] + 16 * q[3] - q[4]) / (12 * e * e)
+    K, Tt, V = [x[0] for x in vals], [x[1] for x in vals], [x[2] for x in vals]
+    vu = d1(V)
+    ks, ts = d1(K) / v, d1(Tt) / v
+    kss = d2(K) / v**2 - vu / v**3 * d1(K)
+    return k * k * t**3 + k * ks * ts + 2 * ks * ks * t - k * kss * t, v
+
+
+def a4_bound(cn, n=2048):
+    """the a-priori terms: I4 = int_0^1 ||A~^(4)(u)|| du (A~ = the generator per unit u; 4th
+    differences on n nodes with the reference RMF), Gamma = int ||A~|| du, R_max, and
+    J = int_0^1 |Q| |c_u|^5 du (the double reflection's error density)"""
+    nodes = list(np.linspace(0.0, 1.0, n + 1))
+    fr = [N1 for N1, _ in ref_lines(cn, [], nodes)]
+    al, be, rmax = [], [], 0.0
+    for u, N1 in zip(nodes, fr):
+        g = cn.geom(u)
+        n1, n2 = cn.frame_of(g, N1)
+        f = g["a"] / (2 * g["b"])
+        al.append(f * (g["Tu"] @ n2))
+        be.append(f * (g["Tu"] @ n1))
+        rmax = max(rmax, g["R"])
+    al, be, h = np.array(al), np.array(be), 1.0 / n
+    d4 = lambda x: (x[:-4] - 4 * x[1:-3] + 6 * x[2:-2] - 4 * x[3:-1] + x[4:]) / h**4
+    # ||[[-b, a], [a, b]]||_2 = sqrt(a^2 + b^2)
+    i4 = np.mean(np.hypot(d4(al), d4(be)))
+    gam = np.mean(np.hypot(al, be))
+    qs = [q_dr(cn.sp, u) for u in np.linspace(0.004, 0.996, 249)]
+    jq = np.mean([abs(q) * v**5 for q, v in qs])
+    return i4, gam, rmax, jq
+
+
+def dr_local_check():
+    """one double-reflection step against the RMF ODE, on random Bezier spines: the
+    deviation from -(h^5/720) Q, relative"""
+    rng = np.random.default_rng(5)
+    worst = 0.0
+    for _ in range(4):
+        cn = Canal("b", Bezier(rng.uniform(-40, 40, (4, 3))), law("CONST", [1.0]))
+        us = list(np.linspace(0.15, 0.85, 5))
+        for u, N1 in zip(us, sample_frames(cn, us)):
+            hu = 0.004
+            u0 = u - hu / 2
+            N = rmf_step(cn, u, N1, -hu / 2)
+            c0, c10, _ = cn.sp.jet(u0)
+            c1_, c11, _ = cn.sp.jet(u0 + hu)
+            T0, T1 = unit(c10), unit(c11)
+            N = unit(N - (N @ T0) * T0)
+            v1 = c1_ - c0
+            rL = N - 2 / (v1 @ v1) * (v1 @ N) * v1
+            tL = T0 - 2 / (v1 @ v1) * (v1 @ T0) * v1
+            v2 = T1 - tL
+            r1 = rL - 2 / (v2 @ v2) * (v2 @ rL) * v2
+            Nx, uu = N.copy(), u0
+            for _k in range(32):
+                Nx = rmf_step(cn, uu, Nx, hu / 32)
+                uu += hu / 32
+            Nx = unit(Nx - (Nx @ T1) * T1)
+            err = math.atan2(np.cross(Nx, r1) @ T1, Nx @ r1)
+            q, v = q_dr(cn.sp, u)
+            hs = np.linalg.norm(v1)
+            worst = max(worst, abs(err + hs**5 * q / 720) / (hs**5 * abs(q) / 720))
+    return worst
+
+
+def sec_numerics():
+    print("== 7. fixed-step numerics (double reflection + Magnus-4 / RK4 on M)")
+    H = SHAPES["helix-cos"]
+    # DR order on the helix against its closed-form RMF
+    errs = []
+    for K in (32, 64, 128):
+        r = H.N10.copy()
+        for k in range(K):
+            x0, t0 = H.sp.jet(k / K)[0], unit(H.sp.jet(k / K)[1])
+            x1, t1 = H.sp.jet((k + 1) / K)[0], unit(H.sp.jet((k + 1) / K)[1])
+            v1 = x1 - x0
+            rL = r - 2 / (v1 @ v1) * (v1 @ r) * v1
+            tL = t0 - 2 / (v1 @ v1) * (v1 @ t0) * v1
+            v2 = t1 - tL
+            r = rL - 2 / (v2 @ v2) * (v2 @ rL) * v2
+        errs.append(np.linalg.norm(r - H.sp.closed_rmf(1.0)[1]))
+    hh = H.sp
+    kap = hh.r / (hh.r**2 + hh.h**2)
+    tau = hh.h / (hh.r**2 + hh.h**2)
+    pred = kap**2 * tau**3 / 720 * H.L * (H.L / 32) ** 4
+    print(f"  DR on the helix, K = 32, 64, 128 steps: frame error {errs[0]:.3e} {errs[1]:.3e} "
+          f"{errs[2]:.3e} (ratios {errs[0] / errs[1]:.2f}, {errs[1] / errs[2]:.2f})")
+    check("DR global order 4 on the helix (|log2 ratio - 4|)",
+          abs(math.log2(errs[1] / errs[2]) - 4), 0.05)
+    check("DR helix error = kappa^2 tau^3 L h^4 / 720 (rel, K = 32)", abs(errs[0] / pred - 1), 0.02)
+    for dt, bound in ((np.float64, 1e-13), (np.float32, 1e-5)):
+        check(f"DR exactly invertible (H1 H2 back), {dt.__name__}, K = 512",
+              dr_inverse_check(H, 256, dt), bound)
+    shapes = list(SHAPES.values()) + [FLOOR]
+    Ns = [8, 16, 32, 64, 128, 256]
+    print("\n  double: max |m - m_ref| (mm) over the nodes and 8 lines; N transport steps "
+          "(2N DR steps)")
+    print("  | shape | L mm | " + " | ".join(f"N={N}" for N in Ns) + " | C = err N^4 |")
+    table = {}
+    for cn in shapes:
+        ref, _ = ref_points(cn, LINES8, 256)
+        row = []
+        for N in Ns:
+            pts = fixed_transport(cn, N, LINES8)[0]
+            st = 256 // N
+            row.append(max(np.linalg.norm(pts[i][j] - ref[i * st][j])
+                           for i in range(N + 1) for j in range(8)))
+        C = max(e * N**4 for e, N in zip(row, Ns) if N >= 32)
+        table[cn.name] = (row, C, ref)
+        print(f"  | {cn.name} | {cn.L:.1f} | " + " | ".join(f"{e:.2e}" for e in row) +
+              f" | {C:.3g} |")
+    check("DR local error = -(h^5/720)(k^2 t^3 + k k' t' + 2 k'^2 t - k k'' t) (rel)",
+          dr_local_check(), 2e-2)
+    print("\n  step counts for eps = 1 um, 0.1 um, 1 nm: measured N = ceil((C/eps)^(1/4)); "
+          "a-priori C_A = R_max [e^(2 Gamma) I4/1440 + (1 + e^(2 Gamma)) J/11520]")
+    print("  | shape | Gamma | I4 | J | C | C_A | N 1 um | N 0.1 um | N 1 nm | N_A 1 um | "
+          "N_A 0.1 um |")
+    for cn in shapes:
+        row, C, _ = table[cn.name]
+        i4, gam, rmax, jq = a4_bound(cn)
+        ca = rmax * (math.exp(2 * gam) * i4 / 1440 + (1 + math.exp(2 * gam)) * jq / 11520)
+        nn = [math.ceil((C / e) ** 0.25) for e in (1e-3, 1e-4, 1e-6)]
+        na = [math.ceil((ca / e) ** 0.25) for e in (1e-3, 1e-4)]
+        print(f"  | {cn.name} | {gam:.3f} | {i4:.3g} | {jq:.3g} | {C:.3g} | {ca:.3g} | {nn[0]} | "
+              f"{nn[1]} | {nn[2]} | {na[0]} | {na[1]} |")
+    # RK4 on M against Magnus-4 (double), N = 32
+    cn = SHAPES["helix-cos"]
+    ref = table[cn.name][2]
+    for sch in ("magnus4", "rk4"):
+        pts = fixed_transport(cn, 32, LINES8, sch)[0]
+        e = max(np.linalg.norm(pts[i][j] - ref[i * 8][j]) for i in range(33) for j in range(8))
+        print(f"  helix-cos, N = 32, {sch}: {e:.3e} mm")
+    if QUICK:
+        return
+    print("\n  float32 (every operation after the jets; Magnus-4 in increment form + Kahan on M)")
+    Nf = [16, 32, 64, 128, 256]
+    print("  | shape | " + " | ".join(f"N={N}" for N in Nf) + " |")
+    for cn in shapes:
+        ref = table[cn.name][2]
+        row = []
+        for N in Nf:
+            pts = fixed_transport(cn, N, LINES8, "magnus4-kahan", np.float32)[0]
+            st = 256 // N
+            row.append(max(np.linalg.norm(pts[i][j].astype(float) - ref[i * st][j])
+                           for i in range(N + 1) for j in range(8)))
+        print(f"  | {cn.name} | " + " | ".join(f"{e:.2e}" for e in row) + " |")
+
 def main():
     sec_surface()
     sec_frame()
@@ -662,6 +947,7 @@ def main():
     sec_riccati()
     sec_floor()
     sec_offset()
+    sec_numerics()
     print(f"verify-spine: {sum(results)} passed, {len(results) - sum(results)} failed")
     return 0 if all(results) else 1
 
