@@ -526,6 +526,18 @@ def sec_riccati():
     check("Mobius (homogeneous y = M y0) vs direct theta ODE (rad)", mob, 1e-10)
     check("Mobius w = (M11 w0 + M12)/(M21 w0 + M22) vs direct (rad)", mobw, 1e-10)
 
+    # planar spine (here the tilted arc; the RMF is N1 = the principal normal, k2 = 0):
+    # alpha = 0, so w = w0 exp(-2 int beta ds) = w0 exp(-int a kappa / b ds)
+    cn = SHAPES["arc-tilted-linear"]
+    nodes = list(np.linspace(0.0, 1.0, 9))
+    ths = [0.4, 1.3, 2.2, -0.7]
+    pl = 0.0
+    for u, (_, th) in zip(nodes, ref_lines(cn, ths, nodes)):
+        g = cn.geom(u)
+        for j, t0 in enumerate(ths):
+            w = math.tan(t0 / 2) * math.exp(-g["a"] / 40.0 / g["b"] * cn.L * u)
+            pl = max(pl, abs(wrap(2 * math.atan(w) - th[j])))
+    check("planar spine: tan(theta/2) = tan(theta0/2) exp(-int a kappa/b ds) (rad)", pl, 1e-10)
 
 
 def canal_closed(w, t, r_off=0.0):
@@ -939,6 +951,19 @@ def sec_numerics():
             row.append(max(np.linalg.norm(pts[i][j].astype(float) - ref[i * st][j])
                            for i in range(N + 1) for j in range(8)))
         print(f"  | {cn.name} | " + " | ".join(f"{e:.2e}" for e in row) + " |")
+    # the paper example's regular band (the canal tests' lines, u0 in [-0.5, 0.125])
+    band = list(np.linspace(-0.5, 0.125, 6))
+    ref, _ = ref_points(FLOOR, band, 1024)
+    print("\n  floor, regular band u0 in [-0.5, 0.125] (6 lines): max |m - m_ref| (mm)")
+    print("  | N | double | float32 |")
+    for N in (128, 256, 512, 1024):
+        e = []
+        for dt in (np.float64, np.float32):
+            pts = fixed_transport(FLOOR, N, band, "magnus4-kahan", dt)[0]
+            st = 1024 // N
+            e.append(max(np.linalg.norm(pts[i][j].astype(float) - ref[i * st][j])
+                         for i in range(N + 1) for j in range(len(band))))
+        print(f"  | {N} | {e[0]:.2e} | {e[1]:.2e} |")
 
 def main():
     sec_surface()
