@@ -434,7 +434,7 @@ TH0 = [0.3 + 0.9 * j for j in range(7)]
 
 def sec_lines():
     print("== 3. the lines: orthogonal to the circles, curvature lines, and the pipe")
-    orth = rod = kap = dev_const = pipe_rod = pipe_orth = 0.0
+    orth = rod = kap = dev_const = pipe_rod = pipe_orth = tan = 0.0
     for cn in ALL:
         nodes, st, ms = line_samples(cn, TH0)
         h = nodes[1] - nodes[0]
@@ -451,6 +451,10 @@ def sec_lines():
                 rod = max(rod, np.linalg.norm(np.cross(dn, dm)) /
                           (np.linalg.norm(dn) * np.linalg.norm(dm) + 1e-300))
                 kap = max(kap, np.linalg.norm(dn + f["k2c"] * dm) / np.linalg.norm(dn))
+                # the line's velocity per unit spine length: (D/b)(b T + a E)
+                E = math.cos(th[j]) * f["N1"] + math.sin(th[j]) * f["N2"]
+                vel = f["D"] / f["b"] * (f["b"] * f["T"] + f["a"] * E)
+                tan = max(tan, np.linalg.norm(dm / f["v"] - vel) / (1 + np.linalg.norm(vel)))
         # theta = const with the RMF: orthogonal (a curvature line) only where a = 0
         for k in range(8, len(nodes) - 8, 40):
             for j, t0 in enumerate(TH0):
@@ -471,6 +475,7 @@ def sec_lines():
     check("family 2 orthogonal to the circles: max |90 deg - angle| (deg)", orth, 1e-6)
     check("family 2 curvature lines: |dn x dm| / (|dn||dm|)", rod, 1e-8)
     check("Rodrigues dn = -kappa2 dm, kappa2 = g/(b^2 - R g) (rel)", kap, 1e-7)
+    check("line velocity dm/ds = (D/b)(b T + a E) (rel)", tan, 1e-7)
     check("pipe (R const): theta = const lines orthogonal to circles (deg)", pipe_orth, 1e-6)
     check("pipe (R const): theta = const lines are curvature lines", pipe_rod, 1e-8)
     print(f"        (theta = const with R not const is NOT: it meets the circles up to "
