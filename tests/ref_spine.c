@@ -396,7 +396,11 @@ static double rs_dp_step(const struct ref_spine_line *l, double h, double un, do
 
 /* Step-size control: accept when err <= tol (1 + max|y|); the next step is h times
  * 0.9 (sc/err)^(1/5), clamped to [0.2, 5]. A final step cut short to land on u does not
- * shrink the step carried to the next call. */
+ * shrink the step carried to the next call. Error: err estimates the local error of the
+ * embedded 4th-order solution; the propagated 5th-order one is smaller still, so the global
+ * error of the state is below (accepted steps) x tol (1 + |y|) -- a few hundred steps per
+ * spine at tol = 1e-12 give <= ~1e-10 in N1 and theta, i.e. <= ~1e-10 R in a point (the
+ * tests measure 1e-11 .. 4e-9 mm against closed forms and ref_canal.c). */
 int ref_spine_line_advance(struct ref_spine_line *l, double u)
 {
     long guard = 0;
