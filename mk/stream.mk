@@ -8,7 +8,8 @@ sim-pyserial: $(BUILD)/host/fw_native
 
 .PHONY: demo sim-rs274
 ## demo: the paper's example (G-code), a boss fillet (frames, ball tool) and one job of each model (GSR, channel, DRC fillet) through the
-##       firmware on a pty, judged by host_sim: summary tables, CSV, G-code and SVG in build/demo
+##       firmware on a pty, judged by host_sim: summary tables, CSV, G-code and SVG in build/demo; then the paper
+##       as a program to host_sim's grbl 1.1h on the machine link (two links)
 demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/demo
 	$(Q)for j in paper_gcode boss_frames model_gsr_frames model_channel_frames model_drc_fillet; do \
@@ -16,7 +17,10 @@ demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	    $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/demo/$$j.csv --gcode $(BUILD)/demo/$$j.ngc --svg $(BUILD)/demo/$$j.svg \
 	        | grep -v '^  PASS' || exit 1; done
-	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge)"
+	@echo "== paper_gcode.job in a two-link cell: the program to host_sim's grbl 1.1h on the machine link"
+	$(Q)$(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/paper_gcode.job \
+	    --machine grbl --gcode $(BUILD)/demo/paper_grbl.ngc | grep -E '^sim: cell|FAIL|^sim: [0-9]' || exit 1
+	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge); the grbl program in $(BUILD)/demo/paper_grbl.ngc"
 
 ## sim-rs274: LinuxCNC's rs274 runs every G-code program of the suite (the paper; the boss with a
 ##            ball tool; placed on an inclined face; the GSR, channel and DRC jobs; 5-axis A/C words
