@@ -241,9 +241,14 @@ int test_spine_init_errors(void)
                  CP_ERR_TOO_MANY);
     CHECK_EQ_INT(init_with(4, SPINE_R_CONST, line, r1, up, 8), CP_ERR_INVAL);
     CHECK_EQ_INT(spine_init(&s, NULL, 8u), CP_ERR_INVAL);
-    /* |a| >= 1 only between the sampled nodes is not caught: a midpoint of the Simpson
-     * grid is a half node, so the COS law with its peak slope at u = 1/(4k) is refused at
-     * any N where that is a half node. */
+    /* |a| >= 1 only near u = 1/8 + k/4: COS law R = 0.9 cos(4 pi u) + 4 on a 10 mm line,
+     * |a| = 1.13 |sin(4 pi u)|: zero at every node of N = 4, 1.13 at its midpoint u = 1/8;
+     * at N = 3 (half nodes k/6: |a| <= 0.98) only the dense samples u = k/256 see it */
+    {
+        static const double cs[4] = {0.9, 4, 2};
+        CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_COS, line, cs, up, 4), CP_ERR_RANGE);
+        CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_COS, line, cs, up, 3), CP_ERR_RANGE);
+    }
     TEST_NOTE("spine context: sizeof(struct spine) = %u B, sizeof(struct spine_state) = %u B (%s)\n",
               (unsigned)sizeof(struct spine), (unsigned)sizeof(struct spine_state), CP_REAL_NAME);
     return 0;

@@ -209,7 +209,7 @@ static int sp_params(struct spine *s, const struct spine_cfg *cfg)
     return CP_OK;
 }
 
-/* |c_u| on the half nodes and on u = k / SPINE_CHECK_N; R > 0 and |a| < 1 on the half nodes */
+/* |c_u| > 0, R > 0 and |a| < 1 on the half nodes and on u = k / SPINE_CHECK_N */
 static int sp_samples(struct spine *s)
 {
     uint32_t k, nh = 2u * s->nsteps, nall = nh + 1u + SPINE_CHECK_N + 1u;
@@ -228,9 +228,6 @@ static int sp_samples(struct spine *s)
         v = cp_v3_norm(&j.cu);
         if (!(v > CP_R(1e-5) * (CP_R(1.0) + scale))) {
             return CP_ERR_DEGENERATE;
-        }
-        if (!half) {
-            continue;
         }
         a = cp_fabs(j.ru) / v;
         bad_r |= !(j.r > CP_R(0.0));

@@ -95,8 +95,8 @@ struct spine {
     struct cp_vec3 e2;  /* ARC, HELIX: ax x e1 */
     struct cp_vec3 ax;  /* ARC: unit normal; HELIX: unit axis */
     struct cp_vec3 n10; /* N1(0), unit, normal to T(0) */
-    cp_real rmin, rmax; /* min and max of R over the 2N + 1 half nodes, mm */
-    cp_real amax;       /* max |a| over the 2N + 1 half nodes (< 1) */
+    cp_real rmin, rmax; /* min and max of R over the init samples, mm */
+    cp_real amax;       /* max |a| over the init samples (< 1) */
     /* the march at node `node`: */
     struct cp_vec3 x;   /* c(u_i) */
     struct cp_vec3 t;   /* unit T(u_i) */
@@ -133,12 +133,14 @@ struct spine_label {
  *                      |span| > 2 pi, HELIX turns <= 0 or > SPINE_TURNS_MAX
  *   CP_ERR_EMPTY       ARC span = 0
  *   CP_ERR_DEGENERATE  ARC/HELIX: zero normal/axis or a start direction along it; any spine:
- *                      |c_u| <= 1e-5 (1 + max|c|) at a half node or at u = k / SPINE_CHECK_N
- *                      (LINE with P0 = P1, Bezier cusp or coincident control points)
- *   CP_ERR_RADIUS      R <= 0 at a half node u = k / (2N)
- *   CP_ERR_RANGE       |a| = |R_u| / |c_u| >= 1 at a half node (the nodes and the Simpson
- *                      midpoints: the transport evaluates A~ exactly there). Proposed for its
- *                      own code (CP_ERR_SLOPE), see the report of issue 18.
+ *                      |c_u| <= 1e-5 (1 + max |sp[i]|) at a half node u = k / (2N) or at
+ *                      u = k / SPINE_CHECK_N (LINE with P0 = P1, Bezier cusp or coincident
+ *                      control points; a cusp strictly between samples is not seen)
+ *   CP_ERR_RADIUS      R <= 0 at a sample (the half nodes and u = k / SPINE_CHECK_N)
+ *   CP_ERR_RANGE       |a| = |R_u| / |c_u| >= 1 at a sample (the half nodes, i.e. the nodes
+ *                      and the Simpson midpoints where the transport evaluates A~, and
+ *                      u = k / SPINE_CHECK_N). Proposed for its own code (CP_ERR_SLOPE), see
+ *                      the report of issue 18.
  *   CP_ERR_FRAME_REF   ref non-zero and its projection on the normal plane at u = 0 is
  *                      <= 1e-4 |ref| (ref along T(0))
  *   CP_ERR_FRENET      ref zero and the principal normal at u = 0 is <= 1e-4 |c_u|^2 (a LINE,
