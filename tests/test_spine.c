@@ -1,0 +1,255 @@
+/* test_spine.c - the SPINE kernel (firmware/models/spine.c, issue 18) against the independent
+ * double reference tests/ref_spine.c (adaptive DP5(4) on the RMF ODE and on dtheta/du).
+ * SPDX-License-Identifier: MIT
+ *
+ * The four acceptance shapes of the issue (docs/MATH-spine.md 9.3): a helix tube with a COS
+ * radius, a 3D Bezier blend with a CUBIC radius, an arc in a tilted plane with a LINEAR
+ * radius, a constant-R pipe on the same Bezier. Step counts N from MATH-spine 9.3: the
+ * 0.1 um column in the float build (limit 1 um: truncation C/N^4 <= 0.1 um plus the float
+ * floor 3-8e-6 mm). In the double build (limit 1 nm) the table's 1 nm column
+ * N = ceil((C/1 nm)^(1/4)) sits exactly at 1 nm (and the off = 1.5 offset adds R/(R + 1.5)
+ * more), so the check runs at the target eps/4 of MATH-spine 9.2 (N x 4^(1/4)); the table's
+ * own columns (1 um float, 1 nm double) are run too and only noted.
+ * Every node i = 0..N, 8 lines theta0 = k pi/4 (k = 0..7, theta0 = pi included), off = 0 and
+ * off = +1.5 (outside tool). Memory: < 2 KB of stack (8 reference lines).
+ */
+#include "cp_math.h"
+#include "ref_spine.h"
+#include "spine.h"
+#include "test.h"
+
+#define PI_D 3.14159265358979323846
+#define NLINES 8
+
+struct shape {
+    const char *name;
+    int kind, law;
+    double sp[12], rp[4];
+    unsigned n_float, n_double; /* N checked: float 0.1 um column, double 1 nm column x 4^(1/4) */
+    unsigned t_float, t_double; /* N noted only: the 1 um and the 1 nm columns of MATH-spine 9.3 */
+};
+
+static const struct shape shapes[4] = {
+    {"helix-cos", SPINE_HELIX, SPINE_R_COS, {0, 0, 0, 0, 0, 1, 15, 10, 2, 1, 0, 0}, {1.5, 4, 3}, 25u,
+     112u, 14u, 79u},
+    {"bezier-cubic", SPINE_BEZIER, SPINE_R_CUBIC, {0, 0, 0, 25, 35, 15, 60, -25, 35, 90, 10, 5},
+     {3, 6, 2, 5}, 9u, 39u, 5u, 27u},
+    {"arc-tilted-linear", SPINE_ARC, SPINE_R_LINEAR, {10, -5, 20, 1, -2, 3, 40, 1, 1, 0, 1.5 * PI_D},
+     {3, 10}, 2u, 8u, 1u, 5u},
+    {"pipe-bezier", SPINE_BEZIER, SPINE_R_CONST, {0, 0, 0, 25, 35, 15, 60, -25, 35, 90, 10, 5}, {4},
+     6u, 26u, 4u, 18u}};
+
+static double dist3d(const struct cp_vec3 *a, const double b[3])
+{
+    double dx = (double)a->x - b[0], dy = (double)a->y - b[1], dz = (double)a->z - b[2];
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+static void cfg_of(const struct shape *sh, struct spine_cfg *cfg)
+{
+    int i;
+    cfg->kind = (uint8_t)sh->kind;
+    cfg->law = (uint8_t)sh->law;
+    for (i = 0; i < 12; i++) {
+        cfg->sp[i] = (cp_real)sh->sp[i];
+    }
+    for (i = 0; i < 4; i++) {
+        cfg->rp[i] = (cp_real)sh->rp[i];
+    }
+    cfg->ref[0] = cfg->ref[1] = cfg->ref[2] = CP_R(0.0);
+}
+
+/* max |p - m_ref| (mm) and max |n - n_ref| over the nodes, NLINES lines and off in {0, 1.5};
+ * -1 on a setup failure */
+static int run_shape(const struct shape *sh, unsigned nsteps, double *em, double *en)
+{
+    static const double offs[2] = {0.0, 1.5};
+    struct spine_cfg cfg;
+    struct spine s;
+    struct ref_spine rs;
+    struct ref_spine_line l[NLINES];
+    struct spine_label lab[NLINES];
+    unsigned i;
+    int j, q;
+    cfg_of(sh, &cfg);
+    if (spine_init(&s, &cfg, (uint16_t)nsteps) != CP_OK ||
+        ref_spine_init(&rs, sh->kind, sh->sp, sh->law, sh->rp, NULL) != REF_SPINE_OK) {
+        return -1;
+    }
+    for (j = 0; j < NLINES; j++) {
+        ref_spine_line_start(&l[j], &rs, j * PI_D / 4.0);
+        spine_label((cp_real)(j * PI_D / 4.0), &lab[j]);
+    }
+    *em = *en = 0.0;
+    for (i = 0; i <= nsteps; i++) {
+        struct spine_state st;
+        if (spine_node(&s, (uint16_t)i, &st) != CP_OK) {
+            return -1;
+        }
+        for (j = 0; j < NLINES; j++) {
+            if (ref_spine_line_advance(&l[j], (double)i / nsteps) != 0) {
+                return -1;
+            }
+            for (q = 0; q < 2; q++) {
+                struct raster_pt pt;
+                double m[3], n[3], e;
+                ref_spine_line_here(&l[j], offs[q], m, n);
+                spine_point_label(&st, &lab[j], (cp_real)offs[q], &pt);
+                e = dist3d(&pt.p, m);
+                *em = e > *em ? e : *em;
+                e = dist3d(&pt.n, n);
+                *en = e > *en ? e : *en;
+            }
+        }
+    }
+    return 0;
+}
+
+int test_spine_accuracy(void)
+{
+    double lim = CP_REAL_DOUBLE ? 1e-6 : 1e-3; /* mm: 1 nm double, 1 um float */
+    int k, fail = 0;
+    for (k = 0; k < 4; k++) {
+        const struct shape *sh = &shapes[k];
+        unsigned n = CP_REAL_DOUBLE ? sh->n_double : sh->n_float;
+        double em, en;
+        CHECK_EQ_INT(run_shape(sh, n, &em, &en), 0);
+        TEST_NOTE("spine %s N = %u: max |m - m_ref| %.3g um, |n - n_ref| %.3g (%s)\n", sh->name, n,
+                  em * 1e3, en, CP_REAL_NAME);
+        fail |= !(em <= lim);
+        n = CP_REAL_DOUBLE ? sh->t_double : sh->t_float;
+        CHECK_EQ_INT(run_shape(sh, n, &em, &en), 0);
+        TEST_NOTE("spine %s N = %u (table column, not checked): %.3g um (%s)\n", sh->name, n,
+                  em * 1e3, CP_REAL_NAME);
+    }
+    CHECK(!fail);
+    return 0;
+}
+
+/* the same shapes at one N for both builds (the float floor and the double truncation) */
+int test_spine_convergence(void)
+{
+    static const unsigned ns[3] = {16u, 32u, 64u};
+    int k, q;
+    for (k = 0; k < 4; k++) {
+        double e[3], en;
+        for (q = 0; q < 3; q++) {
+            CHECK_EQ_INT(run_shape(&shapes[k], ns[q], &e[q], &en), 0);
+        }
+        TEST_NOTE("spine %s N = 16/32/64: %.3g %.3g %.3g um (%s)\n", shapes[k].name, e[0] * 1e3,
+                  e[1] * 1e3, e[2] * 1e3, CP_REAL_NAME);
+        /* order 4 where truncation dominates (helix, double: ratio ~16 per halving) */
+        CHECK(e[2] <= e[0] + (CP_REAL_DOUBLE ? 1e-9 : 2e-5));
+    }
+    return 0;
+}
+
+/* circles, restart (backward spine_node is bit-identical), labels vs theta0, regularity */
+int test_spine_circles(void)
+{
+    const struct shape *sh = &shapes[1];
+    struct spine_cfg cfg;
+    struct spine s;
+    struct ref_spine rs;
+    struct spine_state st, st2;
+    unsigned nst = CP_REAL_DOUBLE ? 64u : 16u, i;
+    double worst = 0.0, tol = CP_REAL_DOUBLE ? 1e-6 : 1e-3;
+    cfg_of(sh, &cfg);
+    CHECK_EQ_INT(spine_init(&s, &cfg, (uint16_t)nst), CP_OK);
+    CHECK_EQ_INT(ref_spine_init(&rs, sh->kind, sh->sp, sh->law, sh->rp, NULL), REF_SPINE_OK);
+    for (i = 0; i <= nst; i += nst / 4u) {
+        int q;
+        CHECK_EQ_INT(spine_node(&s, (uint16_t)i, &st), CP_OK);
+        for (q = 0; q < 6; q++) {
+            struct raster_pt pt;
+            double m[3], n[3], th = -3.0 + q * 1.2, d;
+            CHECK_EQ_INT(ref_spine_circle_point(&rs, (double)i / nst, th, m, n), 0);
+            spine_circle_point(&st, (cp_real)th, CP_R(0.0), &pt);
+            d = dist3d(&pt.p, m);
+            worst = d > worst ? d : worst;
+            CHECK(spine_regularity(&st, CP_R(1.0), CP_R(0.0), CP_R(0.0)) > CP_R(0.0));
+        }
+    }
+    TEST_NOTE("spine circles (bezier, N = %u): max |m - m_ref| %.3g um (%s)\n", nst, worst * 1e3,
+              CP_REAL_NAME);
+    CHECK(worst <= tol);
+    CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst / 2u), &st2), CP_OK); /* behind: restart */
+    CHECK_EQ_INT(spine_node(&s, (uint16_t)nst, &st), CP_OK);
+    CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst / 2u), &st), CP_OK);
+    CHECK(st.m[0] == st2.m[0] && st.m[3] == st2.m[3] && st.n1.x == st2.n1.x && st.c.y == st2.c.y);
+    CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst + 1u), &st), CP_ERR_RANGE);
+    {
+        struct raster_pt a, b;
+        struct spine_label lab;
+        spine_label(CP_R(2.0), &lab);
+        spine_point(&st2, CP_R(2.0), CP_R(-1.0), &a);
+        spine_point_label(&st2, &lab, CP_R(-1.0), &b);
+        CHECK(a.p.x == b.p.x && a.p.y == b.p.y && a.p.z == b.p.z && a.t == st2.u);
+    }
+    return 0;
+}
+
+static int init_with(int kind, int law, const double sp[12], const double rp[4],
+                     const double ref[3], unsigned n)
+{
+    struct spine_cfg cfg;
+    struct spine s;
+    int i;
+    cfg.kind = (uint8_t)kind;
+    cfg.law = (uint8_t)law;
+    for (i = 0; i < 12; i++) {
+        cfg.sp[i] = (cp_real)sp[i];
+    }
+    for (i = 0; i < 4; i++) {
+        cfg.rp[i] = (cp_real)rp[i];
+    }
+    for (i = 0; i < 3; i++) {
+        cfg.ref[i] = ref != NULL ? (cp_real)ref[i] : CP_R(0.0);
+    }
+    return spine_init(&s, &cfg, (uint16_t)n);
+}
+
+int test_spine_init_errors(void)
+{
+    static const double line[12] = {0, 0, 0, 10, 0, 0}, zero[12] = {1, 2, 3, 1, 2, 3};
+    static const double cusp[12] = {0, 0, 0, 1, 1, 0, 0, 1, 0, 1, 0, 0};
+    static const double same[12] = {5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5, 5};
+    static const double up[3] = {0, 0, 1}, along[3] = {2, 0, 0};
+    static const double r1[4] = {1}, steep[4] = {1, 12}, ok_lin[4] = {1, 5}, neg[4] = {-1, 5};
+    double nan_sp[12], arc0[12];
+    int i;
+    struct spine s;
+    for (i = 0; i < 12; i++) {
+        nan_sp[i] = shapes[1].sp[i];
+        arc0[i] = shapes[2].sp[i];
+    }
+    nan_sp[4] = NAN;
+    arc0[10] = 0.0;
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_LINEAR, line, ok_lin, up, 8), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_LINEAR, line, steep, up, 8), CP_ERR_RANGE); /* |a| 1.1 */
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_LINEAR, line, neg, up, 8), CP_ERR_RADIUS);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_CONST, zero, r1, up, 8), CP_ERR_DEGENERATE);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CONST, cusp, r1, up, 8), CP_ERR_DEGENERATE);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CONST, same, r1, up, 8), CP_ERR_DEGENERATE);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CUBIC, nan_sp, shapes[1].rp, NULL, 8),
+                 CP_ERR_NONFINITE);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_CONST, line, r1, NULL, 8), CP_ERR_FRENET);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_CONST, line, r1, along, 8), CP_ERR_FRAME_REF);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_LINEAR, arc0, shapes[2].rp, NULL, 8), CP_ERR_EMPTY);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_CONST, line, r1, up, 0), CP_ERR_RANGE);
+    CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_CONST, line, r1, up, SPINE_NSTEPS_MAX + 1u),
+                 CP_ERR_TOO_MANY);
+    CHECK_EQ_INT(init_with(4, SPINE_R_CONST, line, r1, up, 8), CP_ERR_INVAL);
+    CHECK_EQ_INT(spine_init(&s, NULL, 8u), CP_ERR_INVAL);
+    /* |a| >= 1 only near u = 1/8 + k/4: COS law R = 0.9 cos(4 pi u) + 4 on a 10 mm line,
+     * |a| = 1.13 |sin(4 pi u)|: zero at every node of N = 4, 1.13 at its midpoint u = 1/8;
+     * at N = 3 (half nodes k/6: |a| <= 0.98) only the dense samples u = k/256 see it */
+    {
+        static const double cs[4] = {0.9, 4, 2};
+        CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_COS, line, cs, up, 4), CP_ERR_RANGE);
+        CHECK_EQ_INT(init_with(SPINE_LINE, SPINE_R_COS, line, cs, up, 3), CP_ERR_RANGE);
+    }
+    TEST_NOTE("spine context: sizeof(struct spine) = %u B, sizeof(struct spine_state) = %u B (%s)\n",
+              (unsigned)sizeof(struct spine), (unsigned)sizeof(struct spine_state), CP_REAL_NAME);
+    return 0;
+}
