@@ -539,3 +539,163 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
     cp_real g = st->as + st->b * (st->k1 * ct + st->k2 * sn);
     return st->b * st->b - (st->r + off) * g;
 }
+
+/* ---------------------------------------------------------------------- iterator */
+
+/* The label theta0 of label index l (0..nl). */
+static cp_real sp_lab(const struct spine_path *it, uint32_t l)
+{
+    if (it->nl == 0u) {
+        return it->u0;
+    }
+    return it->u0 + (it->u1 - it->u0) * ((cp_real)l / (cp_real)it->nl);
+}
+
+/* Point k as (march node, label index); line and index for raster_pt. */
+static void sp_where(const struct spine_path *it, uint32_t k, uint32_t *node, uint32_t *l,
+                     struct raster_at *at)
+{
+    uint32_t lk = (uint32_t)it->head.link + 1u;
+    raster_locate(k, it->head.steps, it->head.link, at);
+    if (it->head.mode == RASTER_LINES) {
+        *node = at->i * it->q;
+        *l = at->j * lk + at->a;
+    } else {
+        *node = (at->j * lk + at->a) * it->q;
+        *l = at->i;
+    }
+}
+
+/* The emitted point at (node, label l). */
+static int sp_emit(struct spine_path *it, uint32_t node, uint32_t l, struct raster_pt *pt)
+{
+    struct spine_state st;
+    cp_real r = it->tool_r;
+    int err = spine_node(&it->s, (uint16_t)node, &st);
+    if (err != CP_OK) {
+        return err;
+    }
+    spine_point(&st, sp_lab(it, l), CP_R(0.0), pt);
+    cp_v3_comb(&pt->p, CP_R(1.0), &pt->p, -r, &pt->n);
+    if (it->output == RASTER_OUT_TIP) {
+        pt->p.z -= r;
+    }
+    return cp_finite(pt->p.x + pt->p.y + pt->p.z) ? CP_OK : CP_ERR_NUMERIC;
+}
+
+/* D > 0 at every node and label of the patch, on the surface and the tool-centre surface. */
+static CP_NOINLINE int sp_check_patch(struct spine_path *it)
+{
+    uint32_t i, l;
+    for (i = 0; i <= it->s.nsteps; i++) {
+        struct spine_state st;
+        int err = spine_node(&it->s, (uint16_t)i, &st);
+        if (err != CP_OK) {
+            return err;
+        }
+        for (l = 0; l <= it->nl; l++) {
+            struct spine_label lab;
+            cp_real ct, sn, d0, d1;
+            spine_label(sp_lab(it, l), &lab);
+            spine_angle(&st, &lab, &ct, &sn);
+            d0 = spine_regularity(&st, ct, sn, CP_R(0.0));
+            d1 = spine_regularity(&st, ct, sn, -it->tool_r);
+            if (!cp_finite(d0 + d1)) {
+                return CP_ERR_NUMERIC;
+            }
+            if (!(d0 > CP_R(0.0)) || !(d1 > CP_R(0.0))) {
+                return CP_ERR_CUSP;
+            }
+        }
+    }
+    return CP_OK;
+}
+
+int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
+                    const struct raster_cfg *rc)
+{
+    uint32_t span, q;
+    int err;
+    if (it == NULL) {
+        return CP_ERR_INVAL;
+    }
+    it->head.count = 0;
+    err = spine_init(&it->s, cfg, 1u); /* the geometry's checks first (nodes set below) */
+    if (err == CP_OK) {
+        err = raster_check(rc, CP_PI);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    if (rc->labels != RASTER_LABEL_ANGLE || rc->span != RASTER_SPAN_LINES) {
+        return CP_ERR_INVAL;
+    }
+    if (rc->steps == 0u || rc->link == RASTER_LINK_AUTO) {
+        return CP_ERR_RANGE; /* no tolerance search: STEPS and LINK required */
+    }
+    span = rc->mode == RASTER_LINES ? (uint32_t)rc->steps
+                                    : (rc->n > 1u ? (uint32_t)(rc->n - 1u) : 1u) *
+                                          ((uint32_t)rc->link + 1u);
+    if (span > SPINE_NSTEPS_MAX) {
+        return CP_ERR_TOO_MANY;
+    }
+    q = (SPINE_PATH_NMIN + span - 1u) / span;
+    q = q * span > SPINE_NSTEPS_MAX ? SPINE_NSTEPS_MAX / span : q; /* >= 1 */
+    err = spine_init(&it->s, cfg, (uint16_t)(q * span));
+    if (err != CP_OK) {
+        return err;
+    }
+    if (!(rc->tool_r < it->s.rmin)) {
+        return CP_ERR_TOOL;
+    }
+    it->head.mode = rc->mode;
+    it->head.n = rc->n;
+    it->head.steps = rc->steps;
+    it->head.link = rc->link;
+    it->output = rc->output;
+    it->q = (uint16_t)q;
+    it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * ((uint32_t)rc->link + 1u)
+                                                 : (uint32_t)rc->steps);
+    it->tool_r = rc->tool_r;
+    it->u0 = rc->u0;
+    it->u1 = rc->u1;
+    err = sp_check_patch(it);
+    if (err != CP_OK) {
+        return err;
+    }
+    it->head.count = raster_count(it->head.n, it->head.steps, it->head.link);
+    it->head.k = 0u;
+    return CP_OK;
+}
+
+uint32_t spine_path_count(const struct spine_path *it)
+{
+    return it->head.count;
+}
+
+int spine_path_seek(struct spine_path *it, uint32_t k)
+{
+    return raster_seek(&it->head, k);
+}
+
+int spine_path_next(struct spine_path *it, struct raster_pt *pt)
+{
+    struct raster_at at;
+    uint32_t node, l;
+    int err;
+    if (it->head.k >= it->head.count) {
+        return CP_ERR_DONE;
+    }
+    sp_where(it, it->head.k, &node, &l, &at);
+    err = sp_emit(it, node, l, pt);
+    pt->line = (int16_t)at.line;
+    pt->index = (uint16_t)at.index;
+    if (err == CP_OK) {
+        it->head.k++;
+    }
+    return err;
+}
+
+#if !CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct spine_path) <= 320u, spine_path_ctx_320);
+#endif

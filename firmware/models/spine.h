@@ -192,4 +192,65 @@ void spine_angle(const struct spine_state *st, const struct spine_label *lab, cp
  * cuspidal edge. A regular patch keeps D > 0 (the iterator's check, CP_ERR_CUSP). */
 cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, cp_real off);
 
+/* ---- the toolpath iterator (path.h; raster semantics of raster.h) ----
+ *
+ * A patch of the surface between the family-2 lines theta0 = u0 and u1 (start angles on the
+ * first circle, radians, |u| <= pi; u0 == u1 with n = 1), u over [0, 1]:
+ *   LINES    n family-2 lines theta0_j = u0 + j (u1 - u0)/(n - 1), steps + 1 points each at
+ *            u = i / steps, zigzag (odd lines from u = 1 back to 0); the link from line j to
+ *            j + 1 runs along the characteristic circle at the end u, through the lines of
+ *            the labels between theta0_j and theta0_j+1 (label fraction a / (link + 1)).
+ *   CIRCLES  n characteristic circles at u_j = j / (n - 1) (u = 0 for n = 1), each steps + 1
+ *            points: the family-2 lines theta0 = u0 + i (u1 - u0)/steps at u_j (the same
+ *            patch as LINES: raster span LINES), zigzag in theta0; the link from circle j to
+ *            j + 1 runs along the line where circle j stopped, at u = (j + a/(link + 1))/(n-1).
+ * Every point is (node, label): the march of struct spine to a node, then one cp_sincos (the
+ * label) and spine_point_label. The march nodes: N = q steps (LINES) or q (n - 1)(link + 1)
+ * (CIRCLES), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
+ * MATH-spine 9.3: 32 nodes keep the helix tube, C = 37.2, at 3.5e-5 mm before float
+ * rounding), N <= SPINE_NSTEPS_MAX (else CP_ERR_TOO_MANY).
+ * Cost: the march goes forward only, except on the odd (backward) lines of LINES: each of
+ * their points restarts from u = 0 (spine_node), i.e. i q march steps for the point at node
+ * i q, about N^2/2 march steps per odd line (N = 64: ~2 100 steps, each 2 jets + 2 double
+ * reflections + 1 Magnus step) instead of N. CIRCLES never restarts. A seek costs at most one
+ * restart plus the march to the point's node.
+ * Output: SURFACE the surface point m; CENTRE the ball-end centre m - r n (inside tool: the
+ * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
+ * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
+ * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0 (a tolerance alone)
+ * or link == RASTER_LINK_AUTO CP_ERR_RANGE (no tolerance search yet: give STEPS and LINK);
+ * N > SPINE_NSTEPS_MAX CP_ERR_TOO_MANY; tool_r >= the min R of spine_init's samples
+ * CP_ERR_TOOL; then one forward march over all N nodes: at every node and every label of the
+ * patch (the streamed lines and link labels; CIRCLES: the steps + 1 labels) the regularity D
+ * of the surface (off = 0) and of the tool-centre surface (off = -r) must be > 0, else
+ * CP_ERR_CUSP (a cusp strictly between nodes or labels is not seen); CP_ERR_NUMERIC for a
+ * non-finite march. */
+#define SPINE_PATH_NMIN 32u
+
+struct spine_path {
+    struct raster_head head; /* mode, n, steps, link, count, k (raster.h) */
+    uint8_t output;          /* enum raster_output */
+    uint16_t q;              /* march nodes per raster node step */
+    uint16_t nl;             /* label intervals: LINES (n - 1)(link + 1), CIRCLES steps */
+    cp_real tool_r;          /* mm */
+    cp_real u0, u1;          /* label range, radians */
+    struct spine s;          /* the kernel and its march */
+};
+
+/* Validate and check the patch (see above). Returns CP_OK; then spine_path_next yields
+ * exactly spine_path_count() points. */
+CP_MUST_CHECK int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
+                                  const struct raster_cfg *raster);
+
+/* Total points of the path (0 until a successful init). */
+uint32_t spine_path_count(const struct spine_path *it);
+
+/* Next point: CP_OK, CP_ERR_DONE after the last (CP_ERR_NUMERIC: the march's guard; the
+ * position does not advance). pt->t = u, pt->line, pt->index as raster.h. */
+int spine_path_next(struct spine_path *it, struct raster_pt *pt);
+
+/* Restart at point k (0 <= k <= count; CP_ERR_RANGE otherwise): the next point is bit for
+ * bit the k-th of a full walk (the march from u = 0 is one fixed sequence of steps). */
+CP_MUST_CHECK int spine_path_seek(struct spine_path *it, uint32_t k);
+
 #endif /* SPINE_H */
