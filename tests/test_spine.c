@@ -13,6 +13,9 @@
  * Every node i = 0..N, 8 lines theta0 = k pi/4 (k = 0..7, theta0 = pi included), off = 0 and
  * off = +1.5 (outside tool). Memory: < 2 KB of stack (8 reference lines).
  */
+#include <math.h>
+#include <string.h>
+
 #include "cp_math.h"
 #include "ref_spine.h"
 #include "spine.h"
@@ -251,5 +254,197 @@ int test_spine_init_errors(void)
     }
     TEST_NOTE("spine context: sizeof(struct spine) = %u B, sizeof(struct spine_state) = %u B (%s)\n",
               (unsigned)sizeof(struct spine), (unsigned)sizeof(struct spine_state), CP_REAL_NAME);
+    return 0;
+}
+
+/* ---- the iterator spine_path (LINES/CIRCLES, links, tool output, seek) ---- */
+
+static void raster_of(struct raster_cfg *rc, int mode, unsigned n, double u0, double u1,
+                      unsigned steps, unsigned link, int output, double tool_r)
+{
+    memset(rc, 0, sizeof *rc);
+    rc->mode = (uint8_t)mode;
+    rc->labels = RASTER_LABEL_ANGLE;
+    rc->span = RASTER_SPAN_LINES;
+    rc->n = (uint16_t)n;
+    rc->u0 = (cp_real)u0;
+    rc->u1 = (cp_real)u1;
+    rc->steps = (uint16_t)steps;
+    rc->link = (uint16_t)link;
+    rc->output = (uint8_t)output;
+    rc->tool_r = (cp_real)tool_r;
+}
+
+/* The expected (theta0, u, line, index) of point k, laid out here by hand (not raster.h). */
+static void expect_at(const struct raster_cfg *rc, uint32_t k, double *th, double *u, int *line,
+                      unsigned *index)
+{
+    uint32_t blk = rc->steps + 1u + rc->link, j = k / blk, r = k % blk;
+    double lk = rc->link + 1.0, du = rc->u1 - rc->u0;
+    double fj; /* the fixed coordinate of the block in line units */
+    double run; /* the running coordinate in [0, 1] */
+    if (r <= rc->steps) {
+        unsigned i = (j & 1u) ? rc->steps - r : r;
+        fj = j;
+        run = (double)i / rc->steps;
+        *line = (int)j;
+        *index = i;
+    } else {
+        fj = j + (r - rc->steps) / lk;
+        run = (j & 1u) ? 0.0 : 1.0;
+        *line = -1;
+        *index = r - rc->steps;
+    }
+    if (rc->mode == RASTER_LINES) {
+        *th = rc->n > 1u ? rc->u0 + du * fj / (rc->n - 1.0) : rc->u0;
+        *u = run;
+    } else {
+        *th = rc->u0 + du * run;
+        *u = rc->n > 1u ? fj / (rc->n - 1.0) : 0.0;
+    }
+}
+
+/* Stream the whole path; max distance (mm) from the reference point, -1 on a failure. */
+static double stream_vs_ref(const struct shape *sh, const struct raster_cfg *rc, uint32_t *count)
+{
+    struct spine_cfg cfg;
+    struct spine_path it;
+    struct ref_spine rs;
+    struct raster_pt pt;
+    uint32_t k;
+    double worst = 0.0, r = rc->tool_r;
+    cfg_of(sh, &cfg);
+    if (spine_path_init(&it, &cfg, rc) != CP_OK ||
+        ref_spine_init(&rs, sh->kind, sh->sp, sh->law, sh->rp, NULL) != REF_SPINE_OK) {
+        return -1.0;
+    }
+    *count = spine_path_count(&it);
+    for (k = 0; k < *count; k++) {
+        double th, u, m[3], n[3], e;
+        int line;
+        unsigned index;
+        if (spine_path_next(&it, &pt) != CP_OK) {
+            return -1.0;
+        }
+        expect_at(rc, k, &th, &u, &line, &index);
+        if (pt.line != line || pt.index != index || fabs((double)pt.t - u) > 1e-6 ||
+            ref_spine_line_point(&rs, th, u, m, n) != 0) {
+            return -1.0;
+        }
+        if (rc->output != RASTER_OUT_SURFACE) {
+            m[0] -= r * n[0];
+            m[1] -= r * n[1];
+            m[2] -= r * n[2] + (rc->output == RASTER_OUT_TIP ? r : 0.0);
+        }
+        e = dist3d(&pt.p, m);
+        worst = e > worst ? e : worst;
+    }
+    return spine_path_next(&it, &pt) == CP_ERR_DONE ? worst : -1.0;
+}
+
+int test_spine_path_accuracy(void)
+{
+    static const int outs[3] = {RASTER_OUT_SURFACE, RASTER_OUT_CENTRE, RASTER_OUT_TIP};
+    int k, o;
+    for (k = 0; k < 4; k++) {
+        for (o = 0; o < 3; o++) {
+            struct raster_cfg rc;
+            uint32_t count;
+            double e;
+            raster_of(&rc, RASTER_LINES, 5u, -2.5, 2.5, 40u, 3u, outs[o], o ? 1.0 : 0.0);
+            e = stream_vs_ref(&shapes[k], &rc, &count);
+            CHECK_EQ_INT((int)count, 5 * 41 + 4 * 3);
+            CHECK(e >= 0.0 && e <= 1e-3);
+            TEST_NOTE("spine_path %s LINES out %d: %u points, max |p - ref| %.3g um (%s)\n",
+                      shapes[k].name, outs[o], (unsigned)count, e * 1e3, CP_REAL_NAME);
+            raster_of(&rc, RASTER_CIRCLES, 9u, -3.0, 3.0, 12u, 4u, outs[o], o ? 1.0 : 0.0);
+            e = stream_vs_ref(&shapes[k], &rc, &count);
+            CHECK_EQ_INT((int)count, 9 * 13 + 8 * 4);
+            CHECK(e >= 0.0 && e <= 1e-3);
+            TEST_NOTE("spine_path %s CIRCLES out %d: %u points, max |p - ref| %.3g um (%s)\n",
+                      shapes[k].name, outs[o], (unsigned)count, e * 1e3, CP_REAL_NAME);
+        }
+    }
+    return 0;
+}
+
+static int same_pt(const struct raster_pt *a, const struct raster_pt *b)
+{
+    return memcmp(&a->p, &b->p, sizeof a->p) == 0 && memcmp(&a->n, &b->n, sizeof a->n) == 0 &&
+           a->t == b->t && a->line == b->line && a->index == b->index;
+}
+
+int test_spine_path_seek(void)
+{
+    static struct raster_pt all[400];
+    struct spine_cfg cfg;
+    struct spine_path it;
+    struct raster_cfg rc;
+    struct raster_pt pt;
+    uint32_t k, n, m;
+    int mode;
+    cfg_of(&shapes[0], &cfg);
+    for (mode = 0; mode < 2; mode++) {
+        raster_of(&rc, mode, 4u, -1.0, 2.0, 16u, 2u, RASTER_OUT_TIP, 0.5);
+        CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_OK);
+        n = spine_path_count(&it);
+        CHECK_EQ_INT((int)n, 4 * 17 + 3 * 2);
+        for (k = 0; k < n; k++) {
+            CHECK_EQ_INT(spine_path_next(&it, &all[k]), CP_OK);
+        }
+        CHECK_EQ_INT(spine_path_next(&it, &pt), CP_ERR_DONE);
+        /* seek(k) then next == the k-th point, from every position: k descending (restarts),
+         * and jumps forward */
+        for (m = 0; m < n; m++) {
+            k = (m * 37u) % n;
+            CHECK_EQ_INT(spine_path_seek(&it, k), CP_OK);
+            CHECK_EQ_INT(spine_path_next(&it, &pt), CP_OK);
+            CHECK(same_pt(&pt, &all[k]));
+        }
+        CHECK_EQ_INT(spine_path_seek(&it, n), CP_OK);
+        CHECK_EQ_INT(spine_path_next(&it, &pt), CP_ERR_DONE);
+        CHECK_EQ_INT(spine_path_seek(&it, n + 1u), CP_ERR_RANGE);
+    }
+    TEST_NOTE("spine_path: sizeof(struct spine_path) = %u B (%s)\n",
+              (unsigned)sizeof(struct spine_path), CP_REAL_NAME);
+    return 0;
+}
+
+int test_spine_path_errors(void)
+{
+    /* an arc of radius 5 with R = 6: D = 1 - 6 cos(theta)/5 < 0 near the inside */
+    static const struct shape arc6 = {"arc-cusp", SPINE_ARC, SPINE_R_CONST,
+                                      {0, 0, 0, 0, 0, 1, 5, 1, 0, 0, 1.0}, {6}, 0, 0, 0, 0};
+    static const struct shape arc4 = {"arc-ok", SPINE_ARC, SPINE_R_CONST,
+                                      {0, 0, 0, 0, 0, 1, 5, 1, 0, 0, 1.0}, {4}, 0, 0, 0, 0};
+    struct spine_cfg cfg;
+    struct spine_path it;
+    struct raster_cfg rc;
+    cfg_of(&arc6, &cfg);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, 0u, RASTER_OUT_SURFACE, 0.0);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_CUSP);
+    CHECK_EQ_INT((int)spine_path_count(&it), 0);
+    /* lines only on the outside of the arc (theta0 near pi: D = 1 + 6/5 |cos|) */
+    raster_of(&rc, RASTER_LINES, 3u, 2.5, 3.0, 16u, 0u, RASTER_OUT_SURFACE, 0.0);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_OK);
+    cfg_of(&arc4, &cfg);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, 0u, RASTER_OUT_CENTRE, 4.0);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOOL);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, 0u, RASTER_OUT_CENTRE, 3.9);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_OK);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 0u, 0u, RASTER_OUT_SURFACE, 0.0);
+    rc.tol = CP_R(0.01);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE); /* TOL alone: refused */
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, RASTER_LINK_AUTO, RASTER_OUT_SURFACE, 0.0);
+    rc.tol = CP_R(0.01);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, SPINE_NSTEPS_MAX + 1u, 0u, RASTER_OUT_SURFACE, 0.0);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOO_MANY);
+    raster_of(&rc, RASTER_LINES, 8u, -4.0, 3.0, 16u, 0u, RASTER_OUT_SURFACE, 0.0);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE);
+    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, 0u, RASTER_OUT_SURFACE, 0.0);
+    rc.labels = RASTER_LABEL_LAMBDA;
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_INVAL);
+    CHECK_EQ_INT(spine_path_init(NULL, &cfg, &rc), CP_ERR_INVAL);
     return 0;
 }
