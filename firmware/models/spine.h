@@ -77,10 +77,13 @@ enum spine_law {
 struct spine_cfg {
     uint8_t kind;  /* enum spine_kind */
     uint8_t law;   /* enum spine_law */
+    uint8_t set;   /* protocol bookkeeping (job_spine.c), ignored by spine_init */
     cp_real sp[12]; /* spine parameters, mm and radians, as listed in enum spine_kind (unused
                        entries ignored) */
     cp_real rp[4];  /* radius-law parameters, mm (k dimensionless), as in enum spine_law */
     cp_real ref[3]; /* start vector of N1 (any length); all zero: the principal normal */
+    cp_real dir[3]; /* protocol bookkeeping (job_spine.c SPINEDIR: the ARC/HELIX start
+                       direction, copied into sp[] at RUN), ignored by spine_init */
 };
 
 /* The context: the validated configuration and the march's current node. Read-only for the
