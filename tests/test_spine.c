@@ -435,9 +435,16 @@ int test_spine_path_errors(void)
     raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 0u, 0u, RASTER_OUT_SURFACE, 0.0);
     rc.tol = CP_R(0.01);
     CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE); /* TOL alone: refused */
+    /* LINES with LINK AUTO: the least link whose on-circle sagitta is <= tol (arc R = 4 on
+     * a circle of radius 5: the lines are 6/7 rad apart at u = 0, about 4 mm of arc) */
     raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, RASTER_LINK_AUTO, RASTER_OUT_SURFACE, 0.0);
     rc.tol = CP_R(0.01);
-    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_OK);
+    TEST_NOTE("spine_path LINK AUTO, tol 10 um: link = %u\n", (unsigned)it.head.link);
+    CHECK(it.head.link >= 2u && it.head.link <= 10u);
+    CHECK_EQ_INT((int)spine_path_count(&it), 8 * 17 + 7 * it.head.link);
+    rc.tol = CP_R(1.0e-5);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOL);
     raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, SPINE_NSTEPS_MAX + 1u, 0u, RASTER_OUT_SURFACE, 0.0);
     CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOO_MANY);
     raster_of(&rc, RASTER_LINES, 8u, -4.0, 3.0, 16u, 0u, RASTER_OUT_SURFACE, 0.0);

@@ -611,10 +611,71 @@ static CP_NOINLINE int sp_check_patch(struct spine_path *it)
     return CP_OK;
 }
 
+/* The on-circle sagitta of the link segments from line j to j + 1 with m segments at the
+ * end node of st (mm): the emitted points lie on a circle of radius rho = (R - r) b, and a
+ * chord whose ends differ by d in (cos theta, sin theta) has the sagitta
+ * rho (1 - sqrt(1 - d^2/4)). */
+static cp_real sp_link_sag(const struct spine_path *it, const struct spine_state *st, uint32_t j,
+                           uint32_t m, cp_real dl)
+{
+    cp_real rho = (st->r - it->tool_r) * st->b, c0, s0, worst = CP_R(0.0);
+    struct spine_label lab;
+    uint32_t a;
+    spine_label(it->u0 + (cp_real)j * dl, &lab);
+    spine_angle(st, &lab, &c0, &s0);
+    for (a = 1u; a <= m; a++) {
+        cp_real c1, s1, d2, sg;
+        spine_label(it->u0 + ((cp_real)j + (cp_real)a / (cp_real)m) * dl, &lab);
+        spine_angle(st, &lab, &c1, &s1);
+        d2 = (c1 - c0) * (c1 - c0) + (s1 - s0) * (s1 - s0);
+        d2 = CP_R(1.0) - CP_R(0.25) * d2;
+        sg = rho * (CP_R(1.0) - cp_sqrt(d2 > CP_R(0.0) ? d2 : CP_R(0.0)));
+        worst = sg > worst ? sg : worst;
+        c0 = c1;
+        s0 = s1;
+    }
+    return worst;
+}
+
+/* LINES with RASTER_LINK_AUTO: the least link + 1 = m (from the m = 1 estimate m ~
+ * sqrt(sag / tol), then by ones) whose on-circle sagitta is <= tol on every link; CP_ERR_TOL
+ * above CP_MAX_LINK + 1. The link of line j runs on the circle at u = 1 (even j) or 0. */
+static CP_NOINLINE int sp_link_fit(struct spine_path *it, cp_real tol, uint32_t *link)
+{
+    struct spine_state st[2];
+    cp_real dl = (it->u1 - it->u0) / (cp_real)(it->head.n - 1u), s1 = CP_R(0.0), e;
+    uint32_t j, m;
+    int err = spine_node(&it->s, 0u, &st[1]);
+    if (err == CP_OK) {
+        err = spine_node(&it->s, it->s.nsteps, &st[0]);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    for (j = 0; j + 1u < it->head.n; j++) {
+        e = sp_link_sag(it, &st[j & 1u], j, 1u, dl);
+        s1 = e > s1 ? e : s1;
+    }
+    e = cp_sqrt(s1 / tol);
+    m = e < CP_R(1.0) ? 1u : e > CP_R(70.0) ? 70u : (uint32_t)e;
+    for (; m <= (uint32_t)CP_MAX_LINK + 1u; m++) {
+        cp_real w = CP_R(0.0);
+        for (j = 0; j + 1u < it->head.n && w <= tol; j++) {
+            e = sp_link_sag(it, &st[j & 1u], j, m, dl);
+            w = e > w ? e : w;
+        }
+        if (w <= tol) {
+            *link = m - 1u;
+            return CP_OK;
+        }
+    }
+    return CP_ERR_TOL;
+}
+
 int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
                     const struct raster_cfg *rc)
 {
-    uint32_t span, q;
+    uint32_t span, q, link;
     int err;
     if (it == NULL) {
         return CP_ERR_INVAL;
@@ -630,12 +691,12 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     if (rc->labels != RASTER_LABEL_ANGLE || rc->span != RASTER_SPAN_LINES) {
         return CP_ERR_INVAL;
     }
-    if (rc->steps == 0u || rc->link == RASTER_LINK_AUTO) {
-        return CP_ERR_RANGE; /* no tolerance search: STEPS and LINK required */
+    if (rc->steps == 0u) {
+        return CP_ERR_RANGE; /* no tolerance search for the steps: STEPS required */
     }
+    link = rc->link == RASTER_LINK_AUTO ? 0u : rc->link; /* LINES AUTO: derived below */
     span = rc->mode == RASTER_LINES ? (uint32_t)rc->steps
-                                    : (rc->n > 1u ? (uint32_t)(rc->n - 1u) : 1u) *
-                                          ((uint32_t)rc->link + 1u);
+                                    : (rc->n > 1u ? (uint32_t)(rc->n - 1u) : 1u) * (link + 1u);
     if (span > SPINE_NSTEPS_MAX) {
         return CP_ERR_TOO_MANY;
     }
@@ -651,14 +712,20 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     it->head.mode = rc->mode;
     it->head.n = rc->n;
     it->head.steps = rc->steps;
-    it->head.link = rc->link;
     it->output = rc->output;
     it->q = (uint16_t)q;
-    it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * ((uint32_t)rc->link + 1u)
-                                                 : (uint32_t)rc->steps);
     it->tool_r = rc->tool_r;
     it->u0 = rc->u0;
     it->u1 = rc->u1;
+    if (rc->mode == RASTER_LINES && rc->link == RASTER_LINK_AUTO && rc->n > 1u) {
+        err = sp_link_fit(it, rc->tol > CP_R(0.0) ? rc->tol : CP_R(1.0e-3), &link);
+        if (err != CP_OK) {
+            return err;
+        }
+    }
+    it->head.link = (uint16_t)link;
+    it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * (link + 1u)
+                                                 : (uint32_t)rc->steps);
     err = sp_check_patch(it);
     if (err != CP_OK) {
         return err;

@@ -221,7 +221,11 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
  * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
  * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0 (a tolerance alone)
- * or link == RASTER_LINK_AUTO CP_ERR_RANGE (no tolerance search yet: give STEPS and LINK);
+ * CP_ERR_RANGE (no step search yet: give STEPS); link == RASTER_LINK_AUTO: LINES derive it
+ * from tol (1 um when tol = 0) by the exact on-circle sagitta of the link chords (the least
+ * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES take link = 0 (one straight move
+ * along the line to the next circle: the circle spacing is the caller's; not verified
+ * against tol);
  * N > SPINE_NSTEPS_MAX CP_ERR_TOO_MANY; tool_r >= the min R of spine_init's samples
  * CP_ERR_TOOL; then one forward march over all N nodes: at every node and every label of the
  * patch (the streamed lines and link labels; CIRCLES: the steps + 1 labels) the regularity D
