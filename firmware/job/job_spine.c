@@ -19,6 +19,8 @@
  */
 #include "job.h"
 
+#if CP_WITH_SPINE /* its commands.def rows exist only then */
+
 #define SET_BEZIER 0x0Fu /* SPINE P<i>: 1 << i */
 #define SET_SPINE 0x10u  /* a complete spine */
 
@@ -168,3 +170,33 @@ int job_spine_dump(const struct job *j, unsigned i, struct job_args *a)
     return a->v[0] == CP_R(0.0) && a->v[1] == CP_R(0.0) && a->v[2] == CP_R(0.0) ? JOB_DUMP_SKIP
                                                                                : JOB_DUMP_LINE;
 }
+
+#else
+/* SURFACE SPINE not compiled in: the hooks models.def declares, never called (PATH_IF). */
+void job_spine_defaults(union path_geom *g)
+{
+    (void)g;
+}
+int job_spine_ready(const struct job *j)
+{
+    (void)j;
+    return 0;
+}
+int job_spine_command(struct job *j, struct job_args *a)
+{
+    (void)j;
+    (void)a;
+    return CP_ST_UNKNOWN_CMD;
+}
+int job_spine_dump(const struct job *j, unsigned i, struct job_args *a)
+{
+    (void)j;
+    (void)i;
+    (void)a;
+    return JOB_DUMP_END;
+}
+void job_spine_fill(struct spine_cfg *c)
+{
+    (void)c;
+}
+#endif /* CP_WITH_SPINE */
