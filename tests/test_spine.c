@@ -455,3 +455,67 @@ int test_spine_path_errors(void)
     CHECK_EQ_INT(spine_path_init(NULL, &cfg, &rc), CP_ERR_INVAL);
     return 0;
 }
+
+/* The runs of tests/jobs/model_spine_frames.job through spine_path_init (the job's raster:
+ * LINK AUTO with no TOL, i.e. 1 um links; degrees as in the job), their codes and counts. */
+static int job_run(int kind, int law, const double sp[12], const double rp[4], const double ref[3],
+                   int mode, unsigned n, double v0, double v1, unsigned steps, int output,
+                   double tool, uint32_t *count)
+{
+    struct spine_cfg cfg;
+    struct spine_path it;
+    struct raster_cfg rc;
+    int i, err;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.kind = (uint8_t)kind;
+    cfg.law = (uint8_t)law;
+    for (i = 0; i < 12; i++) {
+        cfg.sp[i] = (cp_real)sp[i];
+    }
+    for (i = 0; i < 4; i++) {
+        cfg.rp[i] = (cp_real)rp[i];
+    }
+    for (i = 0; i < 3; i++) {
+        cfg.ref[i] = ref != NULL ? (cp_real)ref[i] : CP_R(0.0);
+    }
+    raster_of(&rc, mode, n, v0 * PI_D / 180.0, v1 * PI_D / 180.0, steps, RASTER_LINK_AUTO, output,
+              tool);
+    err = spine_path_init(&it, &cfg, &rc);
+    *count = err == CP_OK ? spine_path_count(&it) : 0u;
+    return err;
+}
+
+int test_spine_path_jobs(void)
+{
+    static const double arc60[12] = {0, 0, 0, 0, 0, 1, 5, 1, 0, 0, 60.0 * PI_D / 180.0};
+    static const double line[12] = {0, 0, 0, 10, 0, 0}, up[3] = {0, 0, 1}, r6[4] = {6},
+                        r4[4] = {4};
+    uint32_t c;
+    CHECK_EQ_INT(job_run(SPINE_BEZIER, SPINE_R_CUBIC, shapes[1].sp, shapes[1].rp, NULL,
+                         RASTER_LINES, 6u, -150.0, 150.0, 32u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_OK);
+    TEST_NOTE("frames job run 1 (Bezier CUBIC lines): %u points\n", (unsigned)c);
+    CHECK_EQ_INT(job_run(SPINE_ARC, SPINE_R_LINEAR, shapes[2].sp, shapes[2].rp, NULL,
+                         RASTER_CIRCLES, 7u, -170.0, 170.0, 16u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_OK);
+    CHECK_EQ_INT((int)c, 7 * 17);
+    CHECK_EQ_INT(job_run(SPINE_BEZIER, SPINE_R_CONST, shapes[1].sp, r4, NULL, RASTER_LINES, 4u,
+                         -180.0, 90.0, 16u, RASTER_OUT_CENTRE, 1.0, &c),
+                 CP_OK);
+    TEST_NOTE("frames job run 3 (pipe, tool centre): %u points\n", (unsigned)c);
+    CHECK_EQ_INT(job_run(SPINE_ARC, SPINE_R_CONST, arc60, r6, NULL, RASTER_LINES, 4u, -180.0, 90.0,
+                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_ERR_CUSP);
+    CHECK_EQ_INT(job_run(SPINE_LINE, SPINE_R_CONST, line, r6, NULL, RASTER_LINES, 4u, -180.0, 90.0,
+                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_ERR_FRENET);
+    CHECK_EQ_INT(job_run(SPINE_LINE, SPINE_R_CONST, line, r6, up, RASTER_LINES, 4u, -180.0, 90.0,
+                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_OK);
+    /* the G-code job: helix COS, 5 lines, tool tip (host_sim: 333 points, link 32) */
+    CHECK_EQ_INT(job_run(SPINE_HELIX, SPINE_R_COS, shapes[0].sp, shapes[0].rp, NULL, RASTER_LINES,
+                         5u, -140.0, 140.0, 40u, RASTER_OUT_TIP, 1.0, &c),
+                 CP_OK);
+    CHECK_EQ_INT((int)c, 333);
+    return 0;
+}
