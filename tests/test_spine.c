@@ -432,9 +432,12 @@ int test_spine_path_errors(void)
     CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOOL);
     raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, 0u, RASTER_OUT_CENTRE, 3.9);
     CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_OK);
-    raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 0u, 0u, RASTER_OUT_SURFACE, 0.0);
-    rc.tol = CP_R(0.01);
-    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_RANGE); /* TOL alone: refused */
+    /* TOL alone, 10 nm on the helix tube: > SPINE_NSTEPS_MAX steps */
+    cfg_of(&shapes[0], &cfg);
+    raster_of(&rc, RASTER_LINES, 8u, -2.0, 2.0, 0u, 0u, RASTER_OUT_SURFACE, 0.0);
+    rc.tol = CP_R(1.0e-5);
+    CHECK_EQ_INT(spine_path_init(&it, &cfg, &rc), CP_ERR_TOL);
+    cfg_of(&arc4, &cfg);
     /* LINES with LINK AUTO: the least link whose on-circle sagitta is <= tol (arc R = 4 on
      * a circle of radius 5: the lines are 6/7 rad apart at u = 0, about 4 mm of arc) */
     raster_of(&rc, RASTER_LINES, 8u, -3.0, 3.0, 16u, RASTER_LINK_AUTO, RASTER_OUT_SURFACE, 0.0);
@@ -517,5 +520,100 @@ int test_spine_path_jobs(void)
                          5u, -140.0, 140.0, 40u, RASTER_OUT_TIP, 1.0, &c),
                  CP_OK);
     CHECK_EQ_INT((int)c, 333);
+    return 0;
+}
+
+/* TOL alone: the steps from the chord tolerance (raster_fit on the second-difference
+ * sagitta); every segment of a line (LINES) or circle (CIRCLES) against the reference curve
+ * between its ends (7 samples, the distance to the chord) stays within tol. */
+static double chord_worst(const struct shape *sh, const struct raster_cfg *rc, unsigned *steps)
+{
+    struct spine_cfg cfg;
+    struct spine_path it;
+    struct ref_spine rs;
+    struct raster_pt a, b;
+    uint32_t k, n;
+    double worst = 0.0, r = rc->tool_r;
+    cfg_of(sh, &cfg);
+    if (spine_path_init(&it, &cfg, rc) != CP_OK ||
+        ref_spine_init(&rs, sh->kind, sh->sp, sh->law, sh->rp, NULL) != REF_SPINE_OK) {
+        return -1.0;
+    }
+    *steps = it.head.steps;
+    n = spine_path_count(&it);
+    for (k = 0; k < n; k++) { /* the whole stream streams */
+        if (spine_path_next(&it, &b) != CP_OK) {
+            return -1.0;
+        }
+        a = b;
+    }
+    (void)a;
+    /* the segments, laid out by hand with the derived steps (links excluded) */
+    {
+        struct raster_cfg d = *rc;
+        d.steps = (uint16_t)*steps;
+        d.link = it.head.link;
+        for (k = 1; k < n; k++) {
+            double th0, u0, th1, u1, P0[3], P1[3];
+            int l0, l1, q, c;
+            unsigned i0, i1;
+            expect_at(&d, k - 1u, &th0, &u0, &l0, &i0);
+            expect_at(&d, k, &th1, &u1, &l1, &i1);
+            if (l0 < 0 || l0 != l1) {
+                continue;
+            }
+            for (q = 0; q <= 8; q += 8) {
+                double m[3], nn[3], *P = q ? P1 : P0;
+                if (ref_spine_line_point(&rs, q ? th1 : th0, q ? u1 : u0, m, nn) != 0) {
+                    return -1.0;
+                }
+                for (c = 0; c < 3; c++) {
+                    P[c] = m[c] - r * nn[c];
+                }
+            }
+            for (q = 1; q < 8; q++) {
+                double f = q / 8.0, m[3], nn[3], Q[3], ab[3], t, L2 = 0.0, e2 = 0.0;
+                if (ref_spine_line_point(&rs, th0 + f * (th1 - th0), u0 + f * (u1 - u0), m, nn) !=
+                    0) {
+                    return -1.0;
+                }
+                for (c = 0; c < 3; c++) {
+                    Q[c] = m[c] - r * nn[c];
+                    ab[c] = P1[c] - P0[c];
+                    L2 += ab[c] * ab[c];
+                }
+                t = ((Q[0] - P0[0]) * ab[0] + (Q[1] - P0[1]) * ab[1] + (Q[2] - P0[2]) * ab[2]) / L2;
+                t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+                for (c = 0; c < 3; c++) {
+                    double e = Q[c] - P0[c] - t * ab[c];
+                    e2 += e * e;
+                }
+                worst = sqrt(e2) > worst ? sqrt(e2) : worst;
+            }
+        }
+    }
+    return worst;
+}
+
+int test_spine_path_tol(void)
+{
+    static const double tols[2] = {0.01, 0.002};
+    int k, t, mode;
+    for (k = 0; k < 4; k++) {
+        for (t = 0; t < 2; t++) {
+            for (mode = 0; mode < 2; mode++) {
+                struct raster_cfg rc;
+                unsigned steps = 0;
+                double e;
+                raster_of(&rc, mode, 5u, -2.5, 2.5, 0u, 2u, RASTER_OUT_CENTRE, 1.0);
+                rc.tol = (cp_real)tols[t];
+                e = chord_worst(&shapes[k], &rc, &steps);
+                CHECK(e >= 0.0 && e <= tols[t]);
+                TEST_NOTE("spine_path %s %s TOL %.0f um: steps %u, worst chord %.2f um (%s)\n",
+                          shapes[k].name, mode ? "CIRCLES" : "LINES", tols[t] * 1e3, steps,
+                          e * 1e3, CP_REAL_NAME);
+            }
+        }
+    }
     return 0;
 }

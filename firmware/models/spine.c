@@ -672,10 +672,120 @@ static CP_NOINLINE int sp_link_fit(struct spine_path *it, cp_real tol, uint32_t 
     return CP_ERR_TOL;
 }
 
+/* The march for `steps` points per line (LINES) or circle (CIRCLES) and `link`: N = q span,
+ * spine_init at that N, the tool against its least R. Sets head.steps and q. */
+static int sp_setup(struct spine_path *it, const struct spine_cfg *cfg, uint32_t steps,
+                    uint32_t link)
+{
+    uint32_t span, q;
+    int err;
+    span = it->head.mode == RASTER_LINES
+               ? steps
+               : (it->head.n > 1u ? (uint32_t)(it->head.n - 1u) : 1u) * (link + 1u);
+    if (span > SPINE_NSTEPS_MAX) {
+        return CP_ERR_TOO_MANY;
+    }
+    q = (SPINE_PATH_NMIN + span - 1u) / span;
+    q = q * span > SPINE_NSTEPS_MAX ? SPINE_NSTEPS_MAX / span : q; /* >= 1 */
+    err = spine_init(&it->s, cfg, (uint16_t)(q * span));
+    if (err != CP_OK) {
+        return err;
+    }
+    if (!(it->tool_r < it->s.rmin)) {
+        return CP_ERR_TOOL;
+    }
+    it->head.steps = steps;
+    it->q = (uint16_t)q;
+    return CP_OK;
+}
+
+/* |a - 2 b + c| / 8: the sagitta of the chords of a smooth curve through three consecutive
+ * evenly spaced points (h^2 kappa / 8 to leading order). */
+static cp_real sp_sag3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c)
+{
+    struct cp_vec3 d;
+    d.x = a->x - CP_R(2.0) * b->x + c->x;
+    d.y = a->y - CP_R(2.0) * b->y + c->y;
+    d.z = a->z - CP_R(2.0) * b->z + c->z;
+    return CP_R(0.125) * cp_sqrt(cp_v3_dot(&d, &d));
+}
+
+/* The step sagitta of the raster (head.steps, q, the march at its N): the largest second
+ * difference / 8 along every line (LINES: each line marched from u = 0, n N march steps)
+ * or circle (CIRCLES: one forward march), on the emitted ball-centre (or surface) points. */
+static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
+{
+    uint32_t j, i, steps = it->head.steps, nodes;
+    cp_real dv = it->u1 - it->u0;
+    *sag = CP_R(0.0);
+    for (j = 0; j < it->head.n; j++) {
+        struct raster_pt p[3];
+        struct spine_state st;
+        cp_real fj = it->head.n > 1u ? (cp_real)j / (cp_real)(it->head.n - 1u) : CP_R(0.0);
+        nodes = it->head.mode == RASTER_LINES ? 0u : (uint32_t)(fj * (cp_real)it->s.nsteps + CP_R(0.5));
+        for (i = 0; i <= steps; i++) {
+            cp_real th;
+            int err;
+            if (it->head.mode == RASTER_LINES) {
+                nodes = i * it->q;
+                th = it->u0 + dv * fj;
+            } else {
+                th = it->u0 + dv * ((cp_real)i / (cp_real)steps);
+            }
+            err = (it->head.mode == RASTER_LINES || i == 0u) ? spine_node(&it->s, (uint16_t)nodes, &st)
+                                                             : CP_OK;
+            if (err != CP_OK) {
+                return err;
+            }
+            p[0] = p[1];
+            p[1] = p[2];
+            spine_point(&st, th, -it->tool_r, &p[2]);
+            if (i >= 2u) {
+                cp_real e = sp_sag3(&p[0].p, &p[1].p, &p[2].p);
+                if (!cp_finite(e)) {
+                    return CP_ERR_NUMERIC;
+                }
+                *sag = e > *sag ? e : *sag;
+            }
+        }
+    }
+    return CP_OK;
+}
+
+/* STEPS from the tolerance (raster.h raster_fit): walk, measure, re-estimate. */
+static const struct raster_rule sp_rule = {.aim = CP_R(0.8), .accept = CP_R(0.9), .start = 16u,
+                                           .pilot = 1u, .grow_shift = RASTER_GROW_BY_ONE,
+                                           .clamp = 1u};
+
+static CP_NOINLINE int sp_fit_steps(struct spine_path *it, const struct spine_cfg *cfg,
+                                    const struct raster_cfg *rc, uint32_t link)
+{
+    struct raster_cfg one = *rc;
+    struct raster_fit fit;
+    cp_real sag[2];
+    int round, err = RASTER_FIT_MORE;
+    one.link = 0u; /* the links are derived on their own (sp_link_fit) */
+    raster_fit_begin(&fit, &one, &sp_rule);
+    for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
+        err = sp_setup(it, cfg, fit.m[0], link);
+        if (err == CP_ERR_TOO_MANY) {
+            err = CP_ERR_TOL; /* more steps than the march can take */
+        }
+        if (err == CP_OK) {
+            err = sp_walk_steps(it, &sag[0]);
+        }
+        sag[1] = CP_R(0.0);
+        if (err == CP_OK) {
+            err = raster_fit_update(&fit, sag);
+        }
+    }
+    return err; /* CP_OK: the last sp_setup was at the verified count fit.m[0] */
+}
+
 int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
                     const struct raster_cfg *rc)
 {
-    uint32_t span, q, link;
+    uint32_t link;
     int err;
     if (it == NULL) {
         return CP_ERR_INVAL;
@@ -691,32 +801,21 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     if (rc->labels != RASTER_LABEL_ANGLE || rc->span != RASTER_SPAN_LINES) {
         return CP_ERR_INVAL;
     }
-    if (rc->steps == 0u) {
-        return CP_ERR_RANGE; /* no tolerance search for the steps: STEPS required */
-    }
-    link = rc->link == RASTER_LINK_AUTO ? 0u : rc->link; /* LINES AUTO: derived below */
-    span = rc->mode == RASTER_LINES ? (uint32_t)rc->steps
-                                    : (rc->n > 1u ? (uint32_t)(rc->n - 1u) : 1u) * (link + 1u);
-    if (span > SPINE_NSTEPS_MAX) {
-        return CP_ERR_TOO_MANY;
-    }
-    q = (SPINE_PATH_NMIN + span - 1u) / span;
-    q = q * span > SPINE_NSTEPS_MAX ? SPINE_NSTEPS_MAX / span : q; /* >= 1 */
-    err = spine_init(&it->s, cfg, (uint16_t)(q * span));
-    if (err != CP_OK) {
-        return err;
-    }
-    if (!(rc->tool_r < it->s.rmin)) {
-        return CP_ERR_TOOL;
-    }
     it->head.mode = rc->mode;
     it->head.n = rc->n;
-    it->head.steps = rc->steps;
     it->output = rc->output;
-    it->q = (uint16_t)q;
     it->tool_r = rc->tool_r;
     it->u0 = rc->u0;
     it->u1 = rc->u1;
+    link = rc->link == RASTER_LINK_AUTO ? 0u : rc->link; /* LINES AUTO: derived below */
+    if (rc->steps == 0u) {
+        err = sp_fit_steps(it, cfg, rc, link);
+    } else {
+        err = sp_setup(it, cfg, rc->steps, link);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
     if (rc->mode == RASTER_LINES && rc->link == RASTER_LINK_AUTO && rc->n > 1u) {
         err = sp_link_fit(it, rc->tol > CP_R(0.0) ? rc->tol : CP_R(1.0e-3), &link);
         if (err != CP_OK) {
@@ -725,7 +824,7 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     }
     it->head.link = (uint16_t)link;
     it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * (link + 1u)
-                                                 : (uint32_t)rc->steps);
+                                                 : it->head.steps);
     err = sp_check_patch(it);
     if (err != CP_OK) {
         return err;

@@ -220,8 +220,12 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  * Output: SURFACE the surface point m; CENTRE the ball-end centre m - r n (inside tool: the
  * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
  * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
- * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0 (a tolerance alone)
- * CP_ERR_RANGE (no step search yet: give STEPS); link == RASTER_LINK_AUTO: LINES derive it
+ * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0: the steps from tol
+ * by raster_fit (start 16, pilot, aim 0.8 tol, accept 0.9 tol) on the sagitta estimate
+ * |P(i-1) - 2 P(i) + P(i+1)| / 8 of the emitted points of every line (each marched from
+ * u = 0: n N march steps per walk) or circle, CP_ERR_TOL when N would exceed
+ * SPINE_NSTEPS_MAX (measured against ref_spine: the worst chord 0.57-0.84 tol, test_spine
+ * spine_path_tol); link == RASTER_LINK_AUTO: LINES derive it
  * from tol (1 um when tol = 0) by the exact on-circle sagitta of the link chords (the least
  * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES take link = 0 (one straight move
  * along the line to the next circle: the circle spacing is the caller's; not verified
