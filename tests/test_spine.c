@@ -459,6 +459,8 @@ int test_spine_path_errors(void)
     return 0;
 }
 
+static double job_tol; /* TOL of the job (mm), 0: none */
+
 /* The runs of tests/jobs/model_spine_frames.job through spine_path_init (the job's raster:
  * LINK AUTO with no TOL, i.e. 1 um links; degrees as in the job), their codes and counts. */
 static int job_run(int kind, int law, const double sp[12], const double rp[4], const double ref[3],
@@ -483,6 +485,7 @@ static int job_run(int kind, int law, const double sp[12], const double rp[4], c
     }
     raster_of(&rc, mode, n, v0 * PI_D / 180.0, v1 * PI_D / 180.0, steps, RASTER_LINK_AUTO, output,
               tool);
+    rc.tol = (cp_real)job_tol;
     err = spine_path_init(&it, &cfg, &rc);
     *count = err == CP_OK ? spine_path_count(&it) : 0u;
     return err;
@@ -498,28 +501,47 @@ int test_spine_path_jobs(void)
                          RASTER_LINES, 6u, -150.0, 150.0, 32u, RASTER_OUT_SURFACE, 0.0, &c),
                  CP_OK);
     TEST_NOTE("frames job run 1 (Bezier CUBIC lines): %u points\n", (unsigned)c);
+    /* the tilted arc's circles with 1 um links: more than CP_MAX_LINK; the job's TOL 10 */
     CHECK_EQ_INT(job_run(SPINE_ARC, SPINE_R_LINEAR, shapes[2].sp, shapes[2].rp, NULL,
                          RASTER_CIRCLES, 7u, -170.0, 170.0, 16u, RASTER_OUT_SURFACE, 0.0, &c),
+                 CP_ERR_TOL);
+    job_tol = 0.01;
+    CHECK_EQ_INT(job_run(SPINE_ARC, SPINE_R_LINEAR, shapes[2].sp, shapes[2].rp, NULL,
+                         RASTER_CIRCLES, 7u, -170.0, 170.0, 0u, RASTER_OUT_SURFACE, 0.0, &c),
                  CP_OK);
-    CHECK_EQ_INT((int)c, 7 * 17);
+    TEST_NOTE("frames job run 2 (tilted arc circles, TOL 10): %u points\n", (unsigned)c);
     CHECK_EQ_INT(job_run(SPINE_BEZIER, SPINE_R_CONST, shapes[1].sp, r4, NULL, RASTER_LINES, 4u,
-                         -180.0, 90.0, 16u, RASTER_OUT_CENTRE, 1.0, &c),
+                         -180.0, 90.0, 0u, RASTER_OUT_CENTRE, 1.0, &c),
                  CP_OK);
     TEST_NOTE("frames job run 3 (pipe, tool centre): %u points\n", (unsigned)c);
     CHECK_EQ_INT(job_run(SPINE_ARC, SPINE_R_CONST, arc60, r6, NULL, RASTER_LINES, 4u, -180.0, 90.0,
-                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                         0u, RASTER_OUT_SURFACE, 0.0, &c),
                  CP_ERR_CUSP);
     CHECK_EQ_INT(job_run(SPINE_LINE, SPINE_R_CONST, line, r6, NULL, RASTER_LINES, 4u, -180.0, 90.0,
-                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                         0u, RASTER_OUT_SURFACE, 0.0, &c),
                  CP_ERR_FRENET);
     CHECK_EQ_INT(job_run(SPINE_LINE, SPINE_R_CONST, line, r6, up, RASTER_LINES, 4u, -180.0, 90.0,
-                         16u, RASTER_OUT_SURFACE, 0.0, &c),
+                         0u, RASTER_OUT_SURFACE, 0.0, &c),
                  CP_OK);
+    job_tol = 0.0;
     /* the G-code job: helix COS, 5 lines, tool tip (host_sim: 333 points, link 32) */
     CHECK_EQ_INT(job_run(SPINE_HELIX, SPINE_R_COS, shapes[0].sp, shapes[0].rp, NULL, RASTER_LINES,
                          5u, -140.0, 140.0, 40u, RASTER_OUT_TIP, 1.0, &c),
                  CP_OK);
     CHECK_EQ_INT((int)c, 333);
+    /* its circles: 1 um links need more than CP_MAX_LINK (hence the job's TOL 10) */
+    CHECK_EQ_INT(job_run(SPINE_HELIX, SPINE_R_COS, shapes[0].sp, shapes[0].rp, NULL,
+                         RASTER_CIRCLES, 9u, -150.0, 150.0, 12u, RASTER_OUT_CENTRE, 1.0, &c),
+                 CP_ERR_TOL);
+    job_tol = 0.01;
+    CHECK_EQ_INT(job_run(SPINE_HELIX, SPINE_R_COS, shapes[0].sp, shapes[0].rp, NULL,
+                         RASTER_CIRCLES, 9u, -150.0, 150.0, 0u, RASTER_OUT_CENTRE, 1.0, &c),
+                 CP_OK);
+    TEST_NOTE("gcode job run 2 (helix circles, TOL 10): %u points\n", (unsigned)c);
+    CHECK_EQ_INT(job_run(SPINE_HELIX, SPINE_R_COS, shapes[0].sp, shapes[0].rp, NULL,
+                         RASTER_CIRCLES, 9u, -150.0, 150.0, 0u, RASTER_OUT_TIP, 2.5, &c),
+                 CP_ERR_TOOL);
+    job_tol = 0.0;
     return 0;
 }
 

@@ -687,6 +687,13 @@ static int sp_setup(struct spine_path *it, const struct spine_cfg *cfg, uint32_t
     }
     q = (SPINE_PATH_NMIN + span - 1u) / span;
     q = q * span > SPINE_NSTEPS_MAX ? SPINE_NSTEPS_MAX / span : q; /* >= 1 */
+    if (it->head.mode == RASTER_CIRCLES) { /* even: the link segments' midpoints are nodes */
+        q = (q + 1u) & ~1u;
+        q = q * span > SPINE_NSTEPS_MAX ? q - 2u : q;
+        if (q < 2u) {
+            return CP_ERR_TOO_MANY;
+        }
+    }
     err = spine_init(&it->s, cfg, (uint16_t)(q * span));
     if (err != CP_OK) {
         return err;
@@ -752,34 +759,84 @@ static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
     return CP_OK;
 }
 
+/* CIRCLES: the link sagitta, |P(mid) - (P(a) + P(b))/2| of every link segment (nodes a q,
+ * a q + q/2, (a + 1) q) on the lines theta0 = u0 and u1 (where the circles stop), one
+ * forward march each. */
+static CP_NOINLINE int sp_walk_links(struct spine_path *it, cp_real *sag)
+{
+    uint32_t e, a, segs = it->s.nsteps / it->q, h = it->q / 2u;
+    *sag = CP_R(0.0);
+    for (e = 0; e < 2u; e++) {
+        cp_real th = e ? it->u1 : it->u0;
+        struct raster_pt pa, pm, pb;
+        struct spine_state st;
+        int err = spine_node(&it->s, 0u, &st);
+        if (err != CP_OK) {
+            return err;
+        }
+        spine_point(&st, th, -it->tool_r, &pa);
+        for (a = 0; a < segs; a++) {
+            struct cp_vec3 d;
+            cp_real x;
+            err = spine_node(&it->s, (uint16_t)(a * it->q + h), &st);
+            if (err == CP_OK) {
+                spine_point(&st, th, -it->tool_r, &pm);
+                err = spine_node(&it->s, (uint16_t)((a + 1u) * it->q), &st);
+            }
+            if (err != CP_OK) {
+                return err;
+            }
+            spine_point(&st, th, -it->tool_r, &pb);
+            d.x = pm.p.x - CP_R(0.5) * (pa.p.x + pb.p.x);
+            d.y = pm.p.y - CP_R(0.5) * (pa.p.y + pb.p.y);
+            d.z = pm.p.z - CP_R(0.5) * (pa.p.z + pb.p.z);
+            x = cp_sqrt(cp_v3_dot(&d, &d));
+            if (!cp_finite(x)) {
+                return CP_ERR_NUMERIC;
+            }
+            *sag = x > *sag ? x : *sag;
+            pa = pb;
+        }
+    }
+    return CP_OK;
+}
+
 /* STEPS from the tolerance (raster.h raster_fit): walk, measure, re-estimate. */
 static const struct raster_rule sp_rule = {.aim = CP_R(0.8), .accept = CP_R(0.9), .start = 16u,
                                            .pilot = 1u, .grow_shift = RASTER_GROW_BY_ONE,
                                            .clamp = 1u};
 
-static CP_NOINLINE int sp_fit_steps(struct spine_path *it, const struct spine_cfg *cfg,
-                                    const struct raster_cfg *rc, uint32_t link)
+/* Derive steps (steps == 0) and, for CIRCLES, link (RASTER_LINK_AUTO, n > 1) by raster_fit;
+ * *link: the link (given or derived; LINES: 0 here, derived later by sp_link_fit). */
+static CP_NOINLINE int sp_fit(struct spine_path *it, const struct spine_cfg *cfg,
+                              const struct raster_cfg *rc, uint32_t *link)
 {
     struct raster_cfg one = *rc;
     struct raster_fit fit;
     cp_real sag[2];
     int round, err = RASTER_FIT_MORE;
-    one.link = 0u; /* the links are derived on their own (sp_link_fit) */
+    if (rc->mode == RASTER_LINES) {
+        one.link = 0u; /* the links are derived on their own (sp_link_fit) */
+    }
     raster_fit_begin(&fit, &one, &sp_rule);
     for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
-        err = sp_setup(it, cfg, fit.m[0], link);
+        err = sp_setup(it, cfg, fit.m[0], fit.m[1] - 1u);
         if (err == CP_ERR_TOO_MANY) {
-            err = CP_ERR_TOL; /* more steps than the march can take */
+            err = CP_ERR_TOL; /* more nodes than the march can take */
         }
         if (err == CP_OK) {
             err = sp_walk_steps(it, &sag[0]);
         }
         sag[1] = CP_R(0.0);
+        if (err == CP_OK && rc->mode == RASTER_CIRCLES && it->head.n > 1u) {
+            err = sp_walk_links(it, &sag[1]);
+        }
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
     }
-    return err; /* CP_OK: the last sp_setup was at the verified count fit.m[0] */
+    *link = fit.m[1] - 1u;
+    return err; /* CP_OK: the last sp_setup was at the verified counts fit.m[] */
 }
 
 int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
@@ -808,8 +865,8 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     it->u0 = rc->u0;
     it->u1 = rc->u1;
     link = rc->link == RASTER_LINK_AUTO ? 0u : rc->link; /* LINES AUTO: derived below */
-    if (rc->steps == 0u) {
-        err = sp_fit_steps(it, cfg, rc, link);
+    if (rc->steps == 0u || (rc->mode == RASTER_CIRCLES && rc->link == RASTER_LINK_AUTO)) {
+        err = sp_fit(it, cfg, rc, &link);
     } else {
         err = sp_setup(it, cfg, rc->steps, link);
     }

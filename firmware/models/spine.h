@@ -209,7 +209,7 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  *            j + 1 runs along the line where circle j stopped, at u = (j + a/(link + 1))/(n-1).
  * Every point is (node, label): the march of struct spine to a node, then one cp_sincos (the
  * label) and spine_point_label. The march nodes: N = q steps (LINES) or q (n - 1)(link + 1)
- * (CIRCLES), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
+ * (CIRCLES, q rounded up to even), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
  * MATH-spine 9.3: 32 nodes keep the helix tube, C = 37.2, at 3.5e-5 mm before float
  * rounding), N <= SPINE_NSTEPS_MAX (else CP_ERR_TOO_MANY).
  * Cost: the march goes forward only, except on the odd (backward) lines of LINES: each of
@@ -227,9 +227,10 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  * SPINE_NSTEPS_MAX (measured against ref_spine: the worst chord 0.57-0.84 tol, test_spine
  * spine_path_tol); link == RASTER_LINK_AUTO: LINES derive it
  * from tol (1 um when tol = 0) by the exact on-circle sagitta of the link chords (the least
- * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES take link = 0 (one straight move
- * along the line to the next circle: the circle spacing is the caller's; not verified
- * against tol);
+ * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES derive it with the steps in the
+ * same raster_fit walks from the exact midpoint sagitta of every link segment on the lines
+ * u0 and u1 (CIRCLES keep q even, >= 2, so those midpoints are march nodes: (n - 1)(link
+ * + 1) <= SPINE_NSTEPS_MAX / 2);
  * N > SPINE_NSTEPS_MAX CP_ERR_TOO_MANY; tool_r >= the min R of spine_init's samples
  * CP_ERR_TOOL; then one forward march over all N nodes: at every node and every label of the
  * patch (the streamed lines and link labels; CIRCLES: the steps + 1 labels) the regularity D
