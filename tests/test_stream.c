@@ -439,6 +439,18 @@ static const struct {
     {{GOOD_CANAL, "MACHINE GRBL", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "MACHINE LINUXCNC", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "LINK MACHINE", NULL}, CP_ST_NO_MACHINE_LINK},
+#if CP_WITH_SPINE
+    /* SURFACE SPINE: a cusp (an arc of radius 5 with R = 6), a straight spine without
+     * SPINEREF, the tool, TOL alone beyond the march */
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 6", "LINES 4 -180 90",
+      "STEPS 16", NULL}, CP_ST_CUSP},
+    {{"SURFACE SPINE", "SPINE LINE 0 0 0 10 0 0", "RADIUS CONST 6", "LINES 4 -180 90", "STEPS 16",
+      NULL}, CP_ST_FRENET},
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 4", "LINES 4 -90 90",
+      "STEPS 16", "TOOL BALL 4", NULL}, CP_ST_TOOL},
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 4", "LINES 4 -90 90",
+      "TOL 0.01", NULL}, CP_ST_TOL},
+#endif
 };
 
 /* A model's command refused on its own, under its SURFACE. */
@@ -453,6 +465,12 @@ static const struct {
     {"SURFACE GSR", "RADII T 0 2 0 0 0 0 0", CP_ST_FT_RANGE},
     {"SURFACE GSR", "RADII T 1 -1 0 0 0 0 0", CP_ST_FT_RANGE},
     {"SURFACE GSR", "RADII T 0.5 0 0 0 0 0 0", CP_ST_FT_RANGE},
+#if CP_WITH_SPINE
+    {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2 1", CP_ST_BAD_ARITY},
+    {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2e4", CP_ST_OUT_OF_RANGE},
+    {"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 400", CP_ST_OUT_OF_RANGE},
+    {"SURFACE SPINE", "SPINE KNOT 1 2 3", CP_ST_BAD_KEYWORD},
+#endif
 };
 
 int test_stream_bad_input(void)
