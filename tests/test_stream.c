@@ -593,6 +593,14 @@ int test_stream_job_dump(void)
          "LINES 7 -90 90", NULL},
         {"SURFACE GSR", "CENTER X 0 8 0 0 0 0 0", "CENTER Z 0 0 0 0 2 0 180",
          "RADII N 1.2 0 0 0 0.5 0 180", "RADII B 0.8 0.3 0 0 0 0 0", "FRAME RMF 0 0 1", NULL},
+#if CP_WITH_SPINE
+        {"SURFACE SPINE", "SPINE P0 0 0 0", "SPINE P1 25 35 15", "SPINE P2 60 -25 35",
+         "SPINE P3 90 10 5", "RADIUS CUBIC 3 6 2 5", "SPINEREF 0 0 1", "LINES 6 -150 150", NULL},
+        {"SURFACE SPINE", "SPINE ARC 10 -5 20 1 -2 3 40 270", "SPINEDIR 1 1 0",
+         "RADIUS LINEAR 3 10", "CIRCLES 7 -170 170 PATCH", "TOL 10", NULL},
+        {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2", "RADIUS COS 1.5 4 3",
+         "LINES 5 -140 140", "STEPS 40", NULL},
+#endif
         /* SECTION's rows are computed from its angles: in the double build they need
          * 17 digits each, and AXES with six of them exceeds the line (PROTOCOL.md, $J) */
 #if CP_REAL_DOUBLE
