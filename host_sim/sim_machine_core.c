@@ -336,6 +336,9 @@ int sm_cmd_exec(struct sim_machine *m)
     struct sm_cmd *c = &m->cmd;
     while (c->active && c->i < c->n) {
         struct sm_step *s = &c->v[c->i];
+        if (m->ops->halted(m)) {
+            return 0; /* a hold, an alarm or a kill stopped the main loop mid-line */
+        }
         switch (s->kind) {
         case SM_SYNC:
             if (!m->ops->synced(m)) {

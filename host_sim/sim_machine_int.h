@@ -83,6 +83,7 @@ struct sm_ops {
     void (*planner_empty)(struct sim_machine *m);       /* the last block just finished */
     int (*push)(struct sim_machine *m, const struct sm_block *b); /* 0: the planner is full */
     int (*synced)(struct sim_machine *m);               /* 1: SM_SYNC may complete */
+    int (*halted)(const struct sim_machine *m);         /* 1: no step may run now */
     void (*destroy)(struct sim_machine *m);
     void (*verdict)(const struct sim_machine *m, struct sim_machine_verdict *v);
 };

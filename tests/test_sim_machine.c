@@ -328,6 +328,90 @@ static void grbl_homing(void)
     check(strcmp(r, "ok\r\n") == 0, "grbl $H -> ok", r);
     r = say(s, "??");
     check(strstr(r, "<Idle|MPos:-1.000,-1.000,-1.000") == r, "grbl homed at -pull-off ($27)", r);
+    r = say(s, "$20=1\n");
+    check(strcmp(r, "ok\r\n") == 0, "grbl $20=1 (soft limits) with homing on", r);
+    r = say(s, "G0 X5\n");
+    check(strcmp(r, "ALARM:2\r\n[MSG:Reset to continue]\r\n") == 0,
+          "grbl soft limit: X5 is outside [-200, 0] -> ALARM:2", r);
+    r = say(s, "?G0 X-5\n");
+    check(r[0] == '\0', "grbl after ALARM:2 only a reset is served", r);
+    r = say(s, "\x18");
+    check(strcmp(r, "ok\r\n\r\nGrbl 1.1h ['$' for help]\r\n[MSG:'$H'|'$X' to unlock]\r\n") == 0,
+          "grbl reset: the line's ok, banner, Alarm", r);
+    close_m(s);
+    s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    drain(s);
+    r = say(s, "$20=1\n");
+    check(strcmp(r, "error:10\r\n") == 0, "grbl $20=1 without homing -> error:10", r);
+    close_m(s);
+}
+
+/* serial.c RX_RING_BUFFER = RX_BUFFER_SIZE + 1: all 128 bytes usable (0.9 had 127); held
+ * by '!', the machine reads nothing, so 4 lines of 32 bytes sit in the ring */
+static void grbl_ring_exact(void)
+{
+    static const char ln[] = "G1 X1.0000 Y2.0000 Z0.0000 F100\n"; /* 32 bytes */
+    struct sess *s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    struct sim_machine_opts o;
+    struct sim_machine *m127;
+    struct sim_machine_verdict v;
+    const char *r;
+    int i;
+    check(sizeof ln - 1 == 32, "grbl test line is 32 bytes", NULL);
+    drain(s);
+    put(s, "!");
+    for (i = 0; i < 4; i++) {
+        put(s, ln);
+    }
+    r = drain(s);
+    check(r[0] == '\0' && verdict(s).rx_overflows == 0, "grbl held: 128 bytes wait in the ring",
+          r);
+    r = say(s, "~");
+    check(count_of(r, "ok") == 4, "grbl '~': the 4 lines run, none lost", r);
+    close_m(s);
+    memset(&o, 0, sizeof o);
+    o.rx_size = 127; /* grbl 0.9's ring: the same sender overflows it */
+    m127 = sim_machine_new(&o);
+    sim_machine_rx(m127, (const uint8_t *)"!", 1, 0.0);
+    for (i = 0; i < 4; i++) {
+        sim_machine_rx(m127, (const uint8_t *)ln, 32, 0.0);
+    }
+    sim_machine_verdict(m127, &v);
+    check(v.rx_overflows == 1, "grbl a 127-byte ring drops the 128th byte (control)", NULL);
+    sim_machine_free(m127);
+}
+
+/* G4 P is in seconds (mc_dwell, delay_sec in 50 ms steps); M0 holds until '~'; $C; $J */
+static void grbl_modes(void)
+{
+    struct sess *s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    const char *r;
+    drain(s);
+    r = say(s, "G4 P0.5\n");
+    check(r[0] == '\0', "grbl G4 P0.5 dwells", r);
+    s->t += 499.0;
+    check(drain(s)[0] == '\0', "grbl no ok before 500 ms", s->out + s->mark);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\r\n") == 0, "grbl G4 P0.5 ok at 500 ms (P in seconds)", r);
+    r = say(s, "M0\n?");
+    check(strncmp(r, "<Hold:0|", 8) == 0, "grbl M0 is a hold; no ok yet", r);
+    r = say(s, "~");
+    check(strcmp(r, "ok\r\n") == 0, "grbl M0 answers after '~'", r);
+    r = say(s, "$C\n");
+    check(strcmp(r, "[MSG:Enabled]\r\nok\r\n") == 0, "grbl $C enables check mode", r);
+    r = say(s, "G0 X5\n?");
+    check(strstr(r, "ok\r\n<Check|MPos:0.000,0.000,0.000") == r, "grbl check mode: no motion", r);
+    r = say(s, "$C\n");
+    check(strcmp(r, "[MSG:Disabled]\r\nok\r\n\r\nGrbl 1.1h ['$' for help]\r\n") == 0,
+          "grbl $C off is a soft reset", r);
+    r = say(s, "$J=G91 X1 F100\n?");
+    check(strstr(r, "ok\r\n<Idle|MPos:1.000") == r || strstr(r, "ok\r\n<Jog|") == r,
+          "grbl $J= jogs", r);
+    r = say(s, "$J=X1\n");
+    check(strcmp(r, "error:22\r\n") == 0, "grbl $J= without F -> error:22", r);
+    check(sim_machine_moves(s->m, NULL) == 1, "grbl moves: the $C one recorded, the jog not",
+          NULL);
     close_m(s);
 }
 
@@ -516,6 +600,52 @@ static void marlin_timing(void)
     close_m(s);
 }
 
+/* M3-M5.cpp: sync, then SPINDLE_LASER_POWERUP_DELAY 5000 ms; G4 P in ms; M112 kill */
+static void marlin_spindle(void)
+{
+    struct sess *s = open_m(SIM_MACHINE_MARLIN, 0, 0, 0.0);
+    const char *r;
+    drain(s);
+    r = say(s, "M3 S1000\n");
+    check(r[0] == '\0', "marlin M3 waits for the spindle", r);
+    s->t += 4999.0;
+    r = drain(s);
+    check(strcmp(r, "echo:busy: processing\necho:busy: processing\n") == 0,
+          "marlin busy twice during the 5 s spin-up", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0, "marlin M3 ok after SPINDLE_LASER_POWERUP_DELAY", r);
+    r = say(s, "G4 P300\n");
+    s->t += 299.0;
+    r = drain(s);
+    check(r[0] == '\0', "marlin G4 P300 dwells", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0, "marlin G4 P300 ok at 300 ms (P in ms)", r);
+    r = say(s, "M112\nM114\n");
+    check(strcmp(r, "Error:Printer halted. kill() called!\n") == 0, "marlin M112 kills", r);
+    s->t += 10000.0;
+    r = say(s, "M114\n");
+    check(r[0] == '\0', "marlin killed: no more answers", r);
+    close_m(s);
+    {
+        struct sim_machine_opts o;
+        struct sim_machine *m;
+        uint8_t out[128];
+        size_t n;
+        memset(&o, 0, sizeof o);
+        o.kind = SIM_MACHINE_MARLIN;
+        o.marlin_no_spindle = 1;
+        m = sim_machine_new(&o);
+        sim_machine_rx(m, (const uint8_t *)"M3 S1\n", 6, 0.0);
+        n = sim_machine_tx(m, 0.0, out, sizeof out - 1);
+        out[n] = 0;
+        check(strcmp((char *)out, "echo:Unknown command: \"M3 S1\"\nok\n") == 0,
+              "marlin without SPINDLE_FEATURE: M3 unknown", (char *)out);
+        sim_machine_free(m);
+    }
+}
+
 static void marlin_program(void)
 {
     struct sim_machine_verdict v = run_program(SIM_MACHINE_MARLIN, -1, NULL, "M400\n");
@@ -538,10 +668,13 @@ int main(void)
     grbl_realtime();
     grbl_planner();
     grbl_homing();
+    grbl_ring_exact();
+    grbl_modes();
     grbl_program();
     marlin_protocol();
     marlin_rules();
     marlin_timing();
+    marlin_spindle();
     marlin_program();
     printf("machine: %d passed, %d failed\n", n_pass, n_fail);
     return n_fail ? 1 : 0;
