@@ -452,8 +452,28 @@ static struct sim_machine_verdict run_program(enum sim_machine_kind kind, int dr
     return v;
 }
 
+static struct sim_machine_verdict run_lines(enum sim_machine_kind kind, const char *const *l,
+                                            size_t n)
+{
+    struct sess *s = open_m(kind, 0, 0, 0.0);
+    struct sim_machine_verdict v;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        put(s, l[i]);
+        s->t += 6000.0;
+        drain(s);
+    }
+    v = verdict(s);
+    close_m(s);
+    return v;
+}
+
 static void grbl_program(void)
 {
+    static const char *const low_retract[] = {"G21 G90 G17 G94 G54\n", "M3 S10000\n", "G0 Z10\n",
+                                              "G0 X1 Y1\n", "G1 X1 Y1 Z0 F100\n", "G0 Z5\n",
+                                              "M5\n", "M2\n"};
+    static const char *const low_rapid[] = {"G21 G90\n", "G0 Z10\n", "G0 X5 Y5 Z2\n", "M2\n"};
     struct sim_machine_verdict v = run_program(SIM_MACHINE_GRBL, -1, NULL, NULL);
     check(v.started_safe && v.ended_safe && v.units_mm && v.absolute && v.spindle_off_at_end &&
               v.program_end && v.first_problem[0] == '\0' && v.errors == 0,
@@ -468,6 +488,12 @@ static void grbl_program(void)
     v = run_program(SIM_MACHINE_GRBL, 7, NULL, NULL);
     check(!v.spindle_off_at_end && !v.ended_safe && strstr(v.first_problem, "M5") != NULL,
           "grbl no M5 breaks spindle_off_at_end", v.first_problem);
+    v = run_lines(SIM_MACHINE_GRBL, low_retract, 8);
+    check(!v.ended_safe && v.program_end && strstr(v.first_problem, "retract") != NULL,
+          "grbl a retract below the safe height is no retract", v.first_problem);
+    v = run_lines(SIM_MACHINE_GRBL, low_rapid, 4);
+    check(v.rapid_below_safe == 1 && strstr(v.first_problem, "line 3: rapid move in XY") != NULL,
+          "grbl a rapid in XY below the safe height", v.first_problem);
     v = run_program(SIM_MACHINE_GRBL, 8, NULL, NULL);
     check(!v.program_end && strstr(v.first_problem, "M2") != NULL, "grbl no M2: no program end",
           v.first_problem);
@@ -536,10 +562,10 @@ static void marlin_rules(void)
     drain(s);
     ml_line(l, sizeof l, "N1 G1 X1");
     r = say(s, l);
-    check(sscanf(r, "ok N1 P%u B%u\n", &p, &b) == 2 && b == 3 && p <= 15,
-          "marlin ADVANCED_OK: ok N1 P<planner free> B3", r);
+    check(strcmp(r, "ok N1 P14 B3\n") == 0, "marlin ADVANCED_OK: ok N1 P14 B3 (block planned)", r);
     r = say(s, "G0 X0\n");
-    check(sscanf(r, "ok P%u B%u\n", &p, &b) == 2 && b == 3, "marlin ADVANCED_OK without N", r);
+    check(sscanf(r, "ok P%u B%u\n", &p, &b) == 2 && p == 14 && b == 3,
+          "marlin ADVANCED_OK without N: ok P14 B3", r);
     r = say(s, "G21 G90 G17\n");
     v = verdict(s);
     check(strncmp(r, "ok P", 4) == 0 && v.ignored_words == 1, "marlin G21 G90 G17: G21 only", r);
@@ -584,10 +610,14 @@ static void marlin_timing(void)
     s->t += 2000.0;
     r = drain(s);
     check(strcmp(r, "echo:busy: processing\n") == 0, "marlin busy again at 4000 ms", r);
-    s->t += 7000.0;
+    s->t += 6099.0;
     r = drain(s);
-    check(count_of(r, "echo:busy") == 3 && strstr(r, "ok\n") != NULL,
-          "marlin M400 ok after the 10 s move (+100 ms first-block delay)", r);
+    check(strcmp(r, "echo:busy: processing\necho:busy: processing\necho:busy: processing\n") == 0,
+          "marlin busy at 6, 8, 10 s; no ok at 10.099 s", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0,
+          "marlin M400 ok at 10.1 s: the 10 s move after the 100 ms first-block delay", r);
     close_m(s);
     s = open_m(SIM_MACHINE_MARLIN, 0, 0, 1000.0);
     drain(s);
