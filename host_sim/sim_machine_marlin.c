@@ -255,7 +255,7 @@ static double ml_next_event(const struct sim_machine *m)
     if (!m->exec_on && m->plan_n > 0 && ml_time_model(m)) {
         t = ml->deliver_at;
     }
-    if (m->cmd.active && m->o.busy_ms >= 0.0 && ml->busy_next < t) {
+    if (m->cmd.active && m->o.busy_ms >= 0.0 && ml->busy_next < t && !ml->killed) {
         t = ml->busy_next;
     }
     return t;

@@ -394,6 +394,17 @@ static void grbl_modes(void)
     s->t += 1.0;
     r = drain(s);
     check(strcmp(r, "ok\r\n") == 0, "grbl G4 P0.5 ok at 500 ms (P in seconds)", r);
+    r = say(s, "G4 P1\n");
+    s->t += 400.0;
+    r = say(s, "!");
+    s->t += 5000.0;
+    r = say(s, "~");
+    check(r[0] == '\0', "grbl a hold pauses a dwell", r);
+    s->t += 599.0;
+    check(drain(s)[0] == '\0', "grbl the dwell goes on after '~'", s->out + s->mark);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\r\n") == 0, "grbl G4 P1 ok after 1 s of dwelling", r);
     r = say(s, "M0\n?");
     check(strncmp(r, "<Hold:0|", 8) == 0, "grbl M0 is a hold; no ok yet", r);
     r = say(s, "~");
@@ -568,7 +579,8 @@ static void marlin_rules(void)
           "marlin ADVANCED_OK without N: ok P14 B3", r);
     r = say(s, "G21 G90 G17\n");
     v = verdict(s);
-    check(strncmp(r, "ok P", 4) == 0 && v.ignored_words == 1, "marlin G21 G90 G17: G21 only", r);
+    check(strncmp(r, "ok P", 4) == 0 && v.ignored_words == 1 && !v.absolute,
+          "marlin G21 G90 G17: G21 only (G90 never ran)", r);
     check(strstr(v.first_problem, "line 1: first motion before G21 and G90") != NULL,
           "marlin first_problem: the first rule broken (motion before G21/G90)", v.first_problem);
     close_m(s);
@@ -580,12 +592,14 @@ static void marlin_rules(void)
     say(s, "G1 X1 Y1\n");
     check(verdict(s).g1_without_feed == 1, "marlin G1 without F runs but is a defect", NULL);
     memset(l, 0, sizeof l);
-    strcpy(l, "G1 X1 Y2 Z3 ");
-    memset(l + strlen(l), '0', 100);
-    strcat(l, "\n");
+    strcpy(l, "G1 X1 Y2 Z3");
+    memset(l + strlen(l), ' ', 90);
+    strcat(l, "X9\n"); /* 103 characters: X9 lies beyond the 95th */
     r = say(s, l);
     check(strcmp(r, "ok\n") == 0 && verdict(s).long_lines == 1,
-          "marlin a 112-character line is cut at 95 and run", r);
+          "marlin a 103-character line is cut at 95 and still run", r);
+    r = say(s, "M114\n");
+    check(strncmp(r, "X:1.00 Y:2.00 Z:3.00", 20) == 0, "marlin the cut X9 never arrived", r);
     close_m(s);
 }
 
