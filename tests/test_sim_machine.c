@@ -379,6 +379,15 @@ static void grbl_ring_exact(void)
     sim_machine_verdict(m127, &v);
     check(v.rx_overflows == 1, "grbl a 127-byte ring drops the 128th byte (control)", NULL);
     sim_machine_free(m127);
+    s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    put(s, "!");
+    for (i = 0; i < 6; i++) {
+        put(s, ln); /* 192 bytes */
+    }
+    put(s, "G0 X1.0\n"); /* 8 more: 200 */
+    check(verdict(s).rx_overflows == 72, "grbl 200 bytes while it reads nothing: 72 dropped",
+          NULL);
+    close_m(s);
 }
 
 /* G4 P is in seconds (mc_dwell, delay_sec in 50 ms steps); M0 holds until '~'; $C; $J */
