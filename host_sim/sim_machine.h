@@ -8,8 +8,8 @@
  * replies come out of sim_machine_tx(); both first advance the machine to the given time.
  *
  * Every behaviour follows the real firmware's source (facts only, no code copied; both
- * are GPL). The comments of sim_machine_grbl.c and sim_machine_marlin.c name the file of
- * each behaviour. Sources read:
+ * are GPL). The comments of sim_machine_grbl*.c and sim_machine_marlin*.c name the source
+ * file of each behaviour. Sources read:
  *   grbl 1.1h   gnea/grbl bfb67f0 (build 20190830): grbl/serial.c, protocol.c, gcode.c,
  *               system.c, report.c, settings.c, motion_control.c, planner.c, config.h,
  *               defaults.h (DEFAULTS_GENERIC), nuts_bolts.c, spindle_control.c, print.c
@@ -66,9 +66,20 @@
  *   - M112 (read as the line arrives): "Error:Printer halted. kill() called!" and the
  *     machine stops answering. M410 (likewise) discards the planner.
  *
- * Not emulated (both): acceleration (a block runs at its nominal rate for its whole
- * length), TX back-pressure (replies are never lost or delayed), EEPROM-write RX masking,
- * limit switches, probe contact (G38.x never touches), safety door, grbl laser mode.
+ * Not emulated, or simplified (both): acceleration (a block runs at its nominal rate for
+ * its whole length), TX back-pressure (replies are never lost or delayed: grbl's 104-byte
+ * and Marlin's TX buffers would stall the main loop), limit switches, probe contact
+ * (G38.x never touches: ALARM:5 for G38.2/.4), homing takes no time.
+ * grbl: a hold completes at once (real grbl reports Hold:1 while decelerating); overrides
+ * change only blocks planned after them; $13=1 (inch reports), laser mode ($32), the
+ * safety door (0x84), parking and EEPROM-write RX masking are not modelled; "ALARM:2"
+ * and its "[MSG:Reset to continue]" come out together (no 500 ms between them).
+ * Marlin: M105 answers "ok T:25.00 /0.00 @:0" (invented temperatures); M17 M18 M31
+ * M75-M77 M81-M85 M104 M106 M107 M111 M115 M117-M121 M140 M155 M201 M203-M206 M211 M220
+ * M221 M500-M503 M999 and T<n> answer "ok" with no other effect; G28 homes the named
+ * axes (none: all) to 0 at once, after which soft endstops clamp moves to [0, 200];
+ * G2/G3 segment count follows 2.1's plan_arc (1 mm segments, >= 72 per turn) without its
+ * rounding details; M114's "Count" is the planner position in steps (80/80/4000 per mm).
  */
 #ifndef SIM_MACHINE_H
 #define SIM_MACHINE_H

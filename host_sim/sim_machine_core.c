@@ -94,7 +94,8 @@ static void sm_plan_events(struct sim_machine *m)
 static double sm_delay_next(const struct sim_machine *m)
 {
     const struct sm_cmd *c = &m->cmd;
-    if (c->active && c->i < c->n && c->v[c->i].kind == SM_DELAY && c->t0_set) {
+    if (c->active && c->i < c->n && c->v[c->i].kind == SM_DELAY && c->t0_set &&
+        !m->ops->halted(m)) {
         return c->t0 + c->v[c->i].ms;
     }
     return SM_FAR;
@@ -147,7 +148,6 @@ void sim_machine_rx(struct sim_machine *m, const uint8_t *b, size_t n, double no
             m->rx_len++;
         } else {
             m->r.v.rx_overflows++;
-            m->rx_dropped_since++;
             sm_problem(m, m->prog_line + 1u,
                        "RX overflow: byte dropped in line %lu (the %u-byte ring was full: the "
                        "sender's character counting is broken)",
@@ -271,10 +271,7 @@ static struct sm_step *sm_step_new(struct sim_machine *m, int kind)
         m->cmd.v = v;
         m->cmd.cap = cap;
     }
-    if (!m->cmd.active) {
-        m->cmd.active = 1;
-        m->cmd.begun = m->now;
-    }
+    m->cmd.active = 1;
     s = &m->cmd.v[m->cmd.n++];
     memset(s, 0, sizeof *s);
     s->kind = kind;
@@ -336,6 +333,9 @@ int sm_cmd_exec(struct sim_machine *m)
     struct sm_cmd *c = &m->cmd;
     while (c->active && c->i < c->n) {
         struct sm_step *s = &c->v[c->i];
+        if (m->ops->halted(m)) {
+            return 0; /* a hold, an alarm or a kill stopped the main loop mid-line */
+        }
         switch (s->kind) {
         case SM_SYNC:
             if (!m->ops->synced(m)) {
@@ -667,7 +667,6 @@ void sm_motion(struct sim_machine *m, const struct sm_motion *mo)
         sm_rule_feed(m, mo, line);
     }
     r->end_after = 0;
-    memcpy(r->wpos, mo->w1, sizeof r->wpos);
 }
 
 /* the verdict fields the judge can decide from what it saw */

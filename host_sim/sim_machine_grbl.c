@@ -164,6 +164,9 @@ static void g_planner_empty(struct sim_machine *m)
  * queued or the cycle runs */
 static int g_synced(struct sim_machine *m)
 {
+    if (m->g->suspend) {
+        return 0; /* protocol_execute_realtime sits in the suspend loop */
+    }
     g_cycle_start(m);
     return m->plan_n == 0 && m->g->state != G_ST_CYCLE;
 }
@@ -215,6 +218,11 @@ static int g_push(struct sim_machine *m, const struct sm_block *b)
     return 1;
 }
 
+static int g_halted(const struct sim_machine *m)
+{
+    return m->g->suspend || m->g->critical || m->g->reset_pending;
+}
+
 static void g_destroy(struct sim_machine *m)
 {
     free(m->g);
@@ -226,8 +234,8 @@ static void g_verdict(const struct sim_machine *m, struct sim_machine_verdict *v
     sm_rules_final(m, v, m->r.v.program_end, m->r.end_after);
 }
 
-static const struct sm_ops g_ops = {g_rx_byte, g_run,    g_next_event, g_event,  g_planner_empty,
-                                    g_push,    g_synced, g_destroy,    g_verdict};
+static const struct sm_ops g_ops = {g_rx_byte, g_run,    g_next_event, g_event,   g_planner_empty,
+                                    g_push,    g_synced, g_halted,     g_destroy, g_verdict};
 
 /* settings.c settings_restore defaults (defaults.h DEFAULTS_GENERIC) */
 void g_defaults(struct sm_grbl *g)

@@ -84,10 +84,10 @@ struct sm_grbl {
     float set[G_NSET];
     int state;
     int suspend;  /* a hold is complete: nothing runs until '~' */
+    double hold_t; /* when it began (a dwell in progress resumes after it) */
     int critical; /* soft-limit alarm: nothing runs until a reset */
     int reset_pending;
     double reset_at;
-    int reset_alarm; /* the state at the reset is Alarm */
     char line[G_LINE_SIZE];
     int count, lflags;
     int startup; /* executing a startup line: replies are ">line:ok" */

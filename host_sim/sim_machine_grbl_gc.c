@@ -503,6 +503,24 @@ static int g_check_motion(struct sim_machine *m, struct g_blk *b)
 
 /* ---------------------------------------------------------------- STEP 4 */
 
+/* limits.c limits_soft_check ($20=1): a target outside the machine space [-$13x, 0] stops
+ * motion (hold, then reset), "ALARM:2", "[MSG:Reset to continue]" (report.c), and nothing
+ * but a reset is served (protocol.c critical event); checked in $C mode too */
+static void g_soft_limit(struct sim_machine *m, int arg)
+{
+    struct sm_grbl *g = m->g;
+    (void)arg;
+    sm_plan_clear(m);
+    g->state = G_ST_ALARM;
+    g->critical = 1;
+    g->sp_state = 0;
+    g->sp_rpm = 0.0f;
+    g->cl_state = 0;
+    m->r.v.alarms++;
+    sm_out(m, "ALARM:2\r\n[MSG:Reset to continue]\r\n");
+    sm_problem(m, m->prog_line, "line %lu: ALARM:2 (soft limit)", m->prog_line);
+}
+
 /* a motion accepted by the parser: the judge's record, then (outside $C) a planner block */
 static void g_move(struct sim_machine *m, const struct g_blk *b, const float from[3],
                    const float to[3], int rapid, float feed, int inv)
@@ -523,6 +541,14 @@ static void g_move(struct sim_machine *m, const struct g_blk *b, const float fro
     mo.feed = rapid ? (double)g->feed : (double)feed;
     if (!b->jog) {
         sm_motion(m, &mo);
+        if (g->set[G_SET_SOFT] != 0.0f) {
+            for (i = 0; i < 3; i++) {
+                if (to[i] > 0.0f || to[i] < -g->set[G_SET_TRAVEL + i]) {
+                    sm_step_call(m, g_soft_limit, 0);
+                    return;
+                }
+            }
+        }
     }
     if (g->state == G_ST_CHECK) {
         return; /* motion_control.c mc_line: check mode blocks the planner */

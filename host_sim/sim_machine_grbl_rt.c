@@ -36,6 +36,7 @@ void g_hold_now(struct sim_machine *m, int arg)
     if (!(m->g->state & (G_ST_ALARM | G_ST_CHECK))) {
         m->g->state = G_ST_HOLD;
         m->g->suspend = 1;
+        m->g->hold_t = m->now;
     }
 }
 
@@ -67,11 +68,11 @@ static void g_feed_hold(struct sim_machine *m)
     }
     if (g->state & G_ST_CYCLE) {
         sm_plan_hold(m);
+    }
+    if (g->state == G_ST_IDLE || (g->state & G_ST_CYCLE)) {
         g->state = G_ST_HOLD;
         g->suspend = 1;
-    } else if (g->state == G_ST_IDLE) {
-        g->state = G_ST_HOLD;
-        g->suspend = 1;
+        g->hold_t = m->now;
     }
 }
 
@@ -83,6 +84,9 @@ static void g_resume(struct sim_machine *m)
         g_cycle_start(m);
     } else if ((g->state & G_ST_HOLD) && g->suspend) {
         g->suspend = 0;
+        if (m->cmd.active && m->cmd.t0_set) {
+            m->cmd.t0 += m->now - g->hold_t; /* nuts_bolts.c delay_sec stood still */
+        }
         if (m->plan_n > 0) {
             g->state = G_ST_CYCLE;
             sm_plan_run(m);

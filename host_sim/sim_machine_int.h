@@ -50,7 +50,6 @@ struct sm_cmd {
     int active;
     double t0;    /* when the current SM_DELAY step began */
     int t0_set;
-    double begun; /* when the command began (Marlin keepalive) */
 };
 
 /* the program judge (the verdict under construction) */
@@ -66,12 +65,9 @@ struct sm_rules {
     int first_rapid;      /* the first motion was a rapid */
     unsigned long feeds;  /* feed moves recorded */
     unsigned long spindle_off_line; /* first feed move with the spindle off */
-    double max_feed_z;    /* highest Z a feed move ended at (after the safe height) */
-    unsigned long above_line;
     /* end of program, relative to the last feed move */
     int retract_after, m5_after, end_after;
     unsigned long last_feed_line;
-    double wpos[3]; /* work position after the last recorded motion */
 };
 
 /* dialect operations */
@@ -83,6 +79,7 @@ struct sm_ops {
     void (*planner_empty)(struct sim_machine *m);       /* the last block just finished */
     int (*push)(struct sim_machine *m, const struct sm_block *b); /* 0: the planner is full */
     int (*synced)(struct sim_machine *m);               /* 1: SM_SYNC may complete */
+    int (*halted)(const struct sim_machine *m);         /* 1: no step may run now */
     void (*destroy)(struct sim_machine *m);
     void (*verdict)(const struct sim_machine *m, struct sim_machine_verdict *v);
 };
@@ -97,7 +94,6 @@ struct sim_machine {
     /* RX ring */
     uint8_t *rx;
     unsigned rx_cap, rx_head, rx_len;
-    unsigned long rx_dropped_since; /* overflow bytes since the last line end */
     /* TX */
     char *tx;
     size_t tx_len, tx_cap, tx_pos;

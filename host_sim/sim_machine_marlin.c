@@ -255,7 +255,7 @@ static double ml_next_event(const struct sim_machine *m)
     if (!m->exec_on && m->plan_n > 0 && ml_time_model(m)) {
         t = ml->deliver_at;
     }
-    if (m->cmd.active && m->o.busy_ms >= 0.0 && ml->busy_next < t) {
+    if (m->cmd.active && m->o.busy_ms >= 0.0 && ml->busy_next < t && !ml->killed) {
         t = ml->busy_next;
     }
     return t;
@@ -330,6 +330,11 @@ static int ml_push(struct sim_machine *m, const struct sm_block *b)
     return 1;
 }
 
+static int ml_halted(const struct sim_machine *m)
+{
+    return m->ml->killed;
+}
+
 static void ml_destroy(struct sim_machine *m)
 {
     free(m->ml);
@@ -353,8 +358,8 @@ static void ml_rx_byte(struct sim_machine *m, uint8_t c, int *store)
     *store = 1; /* no realtime bytes (EMERGENCY_PARSER off) */
 }
 
-static const struct sm_ops ml_ops = {ml_rx_byte, ml_run,     ml_next_event, ml_event,  ml_planner_empty,
-                                     ml_push,    ml_synced,  ml_destroy,    ml_verdict};
+static const struct sm_ops ml_ops = {ml_rx_byte, ml_run,    ml_next_event, ml_event,   ml_planner_empty,
+                                     ml_push,    ml_synced, ml_halted,     ml_destroy, ml_verdict};
 
 int sm_marlin_init(struct sim_machine *m)
 {

@@ -186,6 +186,9 @@ static void ml_g0_g1(struct sim_machine *m, const struct ml_cmd *c)
 {
     double dest[3];
     ml_destination(m, c, dest);
+    if (!ml_seenval(c, 'X') && !ml_seenval(c, 'Y') && !ml_seenval(c, 'Z')) {
+        return; /* no axis word: a zero-length move the planner drops (F still set) */
+    }
     ml_line_to(m, dest, c->code == 0, c->seen['A' - 'A'], c->seen['C' - 'A'],
                ml_seenval(c, 'A') ? ml_value(c, 'A') : 0.0,
                ml_seenval(c, 'C') ? ml_value(c, 'C') : 0.0);

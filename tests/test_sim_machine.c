@@ -328,6 +328,110 @@ static void grbl_homing(void)
     check(strcmp(r, "ok\r\n") == 0, "grbl $H -> ok", r);
     r = say(s, "??");
     check(strstr(r, "<Idle|MPos:-1.000,-1.000,-1.000") == r, "grbl homed at -pull-off ($27)", r);
+    r = say(s, "$20=1\n");
+    check(strcmp(r, "ok\r\n") == 0, "grbl $20=1 (soft limits) with homing on", r);
+    r = say(s, "G0 X5\n");
+    check(strcmp(r, "ALARM:2\r\n[MSG:Reset to continue]\r\n") == 0,
+          "grbl soft limit: X5 is outside [-200, 0] -> ALARM:2", r);
+    r = say(s, "?G0 X-5\n");
+    check(r[0] == '\0', "grbl after ALARM:2 only a reset is served", r);
+    r = say(s, "\x18");
+    check(strcmp(r, "ok\r\n\r\nGrbl 1.1h ['$' for help]\r\n[MSG:'$H'|'$X' to unlock]\r\n") == 0,
+          "grbl reset: the line's ok, banner, Alarm", r);
+    close_m(s);
+    s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    drain(s);
+    r = say(s, "$20=1\n");
+    check(strcmp(r, "error:10\r\n") == 0, "grbl $20=1 without homing -> error:10", r);
+    close_m(s);
+}
+
+/* serial.c RX_RING_BUFFER = RX_BUFFER_SIZE + 1: all 128 bytes usable (0.9 had 127); held
+ * by '!', the machine reads nothing, so 4 lines of 32 bytes sit in the ring */
+static void grbl_ring_exact(void)
+{
+    static const char ln[] = "G1 X1.0000 Y2.0000 Z0.0000 F100\n"; /* 32 bytes */
+    struct sess *s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    struct sim_machine_opts o;
+    struct sim_machine *m127;
+    struct sim_machine_verdict v;
+    const char *r;
+    int i;
+    check(sizeof ln - 1 == 32, "grbl test line is 32 bytes", NULL);
+    drain(s);
+    put(s, "!");
+    for (i = 0; i < 4; i++) {
+        put(s, ln);
+    }
+    r = drain(s);
+    check(r[0] == '\0' && verdict(s).rx_overflows == 0, "grbl held: 128 bytes wait in the ring",
+          r);
+    r = say(s, "~");
+    check(count_of(r, "ok") == 4, "grbl '~': the 4 lines run, none lost", r);
+    close_m(s);
+    memset(&o, 0, sizeof o);
+    o.rx_size = 127; /* grbl 0.9's ring: the same sender overflows it */
+    m127 = sim_machine_new(&o);
+    sim_machine_rx(m127, (const uint8_t *)"!", 1, 0.0);
+    for (i = 0; i < 4; i++) {
+        sim_machine_rx(m127, (const uint8_t *)ln, 32, 0.0);
+    }
+    sim_machine_verdict(m127, &v);
+    check(v.rx_overflows == 1, "grbl a 127-byte ring drops the 128th byte (control)", NULL);
+    sim_machine_free(m127);
+    s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    put(s, "!");
+    for (i = 0; i < 6; i++) {
+        put(s, ln); /* 192 bytes */
+    }
+    put(s, "G0 X1.0\n"); /* 8 more: 200 */
+    check(verdict(s).rx_overflows == 72, "grbl 200 bytes while it reads nothing: 72 dropped",
+          NULL);
+    close_m(s);
+}
+
+/* G4 P is in seconds (mc_dwell, delay_sec in 50 ms steps); M0 holds until '~'; $C; $J */
+static void grbl_modes(void)
+{
+    struct sess *s = open_m(SIM_MACHINE_GRBL, 0, 0, 0.0);
+    const char *r;
+    drain(s);
+    r = say(s, "G4 P0.5\n");
+    check(r[0] == '\0', "grbl G4 P0.5 dwells", r);
+    s->t += 499.0;
+    check(drain(s)[0] == '\0', "grbl no ok before 500 ms", s->out + s->mark);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\r\n") == 0, "grbl G4 P0.5 ok at 500 ms (P in seconds)", r);
+    r = say(s, "G4 P1\n");
+    s->t += 400.0;
+    r = say(s, "!");
+    s->t += 5000.0;
+    r = say(s, "~");
+    check(r[0] == '\0', "grbl a hold pauses a dwell", r);
+    s->t += 599.0;
+    check(drain(s)[0] == '\0', "grbl the dwell goes on after '~'", s->out + s->mark);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\r\n") == 0, "grbl G4 P1 ok after 1 s of dwelling", r);
+    r = say(s, "M0\n?");
+    check(strncmp(r, "<Hold:0|", 8) == 0, "grbl M0 is a hold; no ok yet", r);
+    r = say(s, "~");
+    check(strcmp(r, "ok\r\n") == 0, "grbl M0 answers after '~'", r);
+    r = say(s, "$C\n");
+    check(strcmp(r, "[MSG:Enabled]\r\nok\r\n") == 0, "grbl $C enables check mode", r);
+    r = say(s, "G0 X5\n?");
+    check(strstr(r, "ok\r\n<Check|MPos:0.000,0.000,0.000") == r, "grbl check mode: no motion", r);
+    r = say(s, "$C\n");
+    check(strcmp(r, "[MSG:Disabled]\r\nok\r\n\r\nGrbl 1.1h ['$' for help]\r\n") == 0,
+          "grbl $C off is a soft reset", r);
+    r = say(s, "$J=G91 X1 F100\n?");
+    check(strstr(r, "ok\r\n<Idle|MPos:1.000") == r || strstr(r, "ok\r\n<Jog|") == r,
+          "grbl $J= jogs", r);
+    r = say(s, "$J=X1\n");
+    check(strcmp(r, "error:22\r\n") == 0, "grbl $J= without F -> error:22", r);
+    check(sim_machine_moves(s->m, NULL) == 1, "grbl moves: the $C one recorded, the jog not",
+          NULL);
     close_m(s);
 }
 
@@ -368,8 +472,28 @@ static struct sim_machine_verdict run_program(enum sim_machine_kind kind, int dr
     return v;
 }
 
+static struct sim_machine_verdict run_lines(enum sim_machine_kind kind, const char *const *l,
+                                            size_t n)
+{
+    struct sess *s = open_m(kind, 0, 0, 0.0);
+    struct sim_machine_verdict v;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        put(s, l[i]);
+        s->t += 6000.0;
+        drain(s);
+    }
+    v = verdict(s);
+    close_m(s);
+    return v;
+}
+
 static void grbl_program(void)
 {
+    static const char *const low_retract[] = {"G21 G90 G17 G94 G54\n", "M3 S10000\n", "G0 Z10\n",
+                                              "G0 X1 Y1\n", "G1 X1 Y1 Z0 F100\n", "G0 Z5\n",
+                                              "M5\n", "M2\n"};
+    static const char *const low_rapid[] = {"G21 G90\n", "G0 Z10\n", "G0 X5 Y5 Z2\n", "M2\n"};
     struct sim_machine_verdict v = run_program(SIM_MACHINE_GRBL, -1, NULL, NULL);
     check(v.started_safe && v.ended_safe && v.units_mm && v.absolute && v.spindle_off_at_end &&
               v.program_end && v.first_problem[0] == '\0' && v.errors == 0,
@@ -384,6 +508,12 @@ static void grbl_program(void)
     v = run_program(SIM_MACHINE_GRBL, 7, NULL, NULL);
     check(!v.spindle_off_at_end && !v.ended_safe && strstr(v.first_problem, "M5") != NULL,
           "grbl no M5 breaks spindle_off_at_end", v.first_problem);
+    v = run_lines(SIM_MACHINE_GRBL, low_retract, 8);
+    check(!v.ended_safe && v.program_end && strstr(v.first_problem, "retract") != NULL,
+          "grbl a retract below the safe height is no retract", v.first_problem);
+    v = run_lines(SIM_MACHINE_GRBL, low_rapid, 4);
+    check(v.rapid_below_safe == 1 && strstr(v.first_problem, "line 3: rapid move in XY") != NULL,
+          "grbl a rapid in XY below the safe height", v.first_problem);
     v = run_program(SIM_MACHINE_GRBL, 8, NULL, NULL);
     check(!v.program_end && strstr(v.first_problem, "M2") != NULL, "grbl no M2: no program end",
           v.first_problem);
@@ -452,13 +582,14 @@ static void marlin_rules(void)
     drain(s);
     ml_line(l, sizeof l, "N1 G1 X1");
     r = say(s, l);
-    check(sscanf(r, "ok N1 P%u B%u\n", &p, &b) == 2 && b == 3 && p <= 15,
-          "marlin ADVANCED_OK: ok N1 P<planner free> B3", r);
+    check(strcmp(r, "ok N1 P14 B3\n") == 0, "marlin ADVANCED_OK: ok N1 P14 B3 (block planned)", r);
     r = say(s, "G0 X0\n");
-    check(sscanf(r, "ok P%u B%u\n", &p, &b) == 2 && b == 3, "marlin ADVANCED_OK without N", r);
+    check(sscanf(r, "ok P%u B%u\n", &p, &b) == 2 && p == 14 && b == 3,
+          "marlin ADVANCED_OK without N: ok P14 B3", r);
     r = say(s, "G21 G90 G17\n");
     v = verdict(s);
-    check(strncmp(r, "ok P", 4) == 0 && v.ignored_words == 1, "marlin G21 G90 G17: G21 only", r);
+    check(strncmp(r, "ok P", 4) == 0 && v.ignored_words == 1 && !v.absolute,
+          "marlin G21 G90 G17: G21 only (G90 never ran)", r);
     check(strstr(v.first_problem, "line 1: first motion before G21 and G90") != NULL,
           "marlin first_problem: the first rule broken (motion before G21/G90)", v.first_problem);
     close_m(s);
@@ -470,12 +601,14 @@ static void marlin_rules(void)
     say(s, "G1 X1 Y1\n");
     check(verdict(s).g1_without_feed == 1, "marlin G1 without F runs but is a defect", NULL);
     memset(l, 0, sizeof l);
-    strcpy(l, "G1 X1 Y2 Z3 ");
-    memset(l + strlen(l), '0', 100);
-    strcat(l, "\n");
+    strcpy(l, "G1 X1 Y2 Z3");
+    memset(l + strlen(l), ' ', 90);
+    strcat(l, "X9\n"); /* 103 characters: X9 lies beyond the 95th */
     r = say(s, l);
     check(strcmp(r, "ok\n") == 0 && verdict(s).long_lines == 1,
-          "marlin a 112-character line is cut at 95 and run", r);
+          "marlin a 103-character line is cut at 95 and still run", r);
+    r = say(s, "M114\n");
+    check(strncmp(r, "X:1.00 Y:2.00 Z:3.00", 20) == 0, "marlin the cut X9 never arrived", r);
     close_m(s);
 }
 
@@ -500,10 +633,14 @@ static void marlin_timing(void)
     s->t += 2000.0;
     r = drain(s);
     check(strcmp(r, "echo:busy: processing\n") == 0, "marlin busy again at 4000 ms", r);
-    s->t += 7000.0;
+    s->t += 6099.0;
     r = drain(s);
-    check(count_of(r, "echo:busy") == 3 && strstr(r, "ok\n") != NULL,
-          "marlin M400 ok after the 10 s move (+100 ms first-block delay)", r);
+    check(strcmp(r, "echo:busy: processing\necho:busy: processing\necho:busy: processing\n") == 0,
+          "marlin busy at 6, 8, 10 s; no ok at 10.099 s", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0,
+          "marlin M400 ok at 10.1 s: the 10 s move after the 100 ms first-block delay", r);
     close_m(s);
     s = open_m(SIM_MACHINE_MARLIN, 0, 0, 1000.0);
     drain(s);
@@ -514,6 +651,52 @@ static void marlin_timing(void)
     check(verdict(s).rx_overflows > 0, "marlin 660 bytes at once overflow the 127-byte ring",
           NULL);
     close_m(s);
+}
+
+/* M3-M5.cpp: sync, then SPINDLE_LASER_POWERUP_DELAY 5000 ms; G4 P in ms; M112 kill */
+static void marlin_spindle(void)
+{
+    struct sess *s = open_m(SIM_MACHINE_MARLIN, 0, 0, 0.0);
+    const char *r;
+    drain(s);
+    r = say(s, "M3 S1000\n");
+    check(r[0] == '\0', "marlin M3 waits for the spindle", r);
+    s->t += 4999.0;
+    r = drain(s);
+    check(strcmp(r, "echo:busy: processing\necho:busy: processing\n") == 0,
+          "marlin busy twice during the 5 s spin-up", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0, "marlin M3 ok after SPINDLE_LASER_POWERUP_DELAY", r);
+    r = say(s, "G4 P300\n");
+    s->t += 299.0;
+    r = drain(s);
+    check(r[0] == '\0', "marlin G4 P300 dwells", r);
+    s->t += 1.0;
+    r = drain(s);
+    check(strcmp(r, "ok\n") == 0, "marlin G4 P300 ok at 300 ms (P in ms)", r);
+    r = say(s, "M112\nM114\n");
+    check(strcmp(r, "Error:Printer halted. kill() called!\n") == 0, "marlin M112 kills", r);
+    s->t += 10000.0;
+    r = say(s, "M114\n");
+    check(r[0] == '\0', "marlin killed: no more answers", r);
+    close_m(s);
+    {
+        struct sim_machine_opts o;
+        struct sim_machine *m;
+        uint8_t out[128];
+        size_t n;
+        memset(&o, 0, sizeof o);
+        o.kind = SIM_MACHINE_MARLIN;
+        o.marlin_no_spindle = 1;
+        m = sim_machine_new(&o);
+        sim_machine_rx(m, (const uint8_t *)"M3 S1\n", 6, 0.0);
+        n = sim_machine_tx(m, 0.0, out, sizeof out - 1);
+        out[n] = 0;
+        check(strcmp((char *)out, "echo:Unknown command: \"M3 S1\"\nok\n") == 0,
+              "marlin without SPINDLE_FEATURE: M3 unknown", (char *)out);
+        sim_machine_free(m);
+    }
 }
 
 static void marlin_program(void)
@@ -538,10 +721,13 @@ int main(void)
     grbl_realtime();
     grbl_planner();
     grbl_homing();
+    grbl_ring_exact();
+    grbl_modes();
     grbl_program();
     marlin_protocol();
     marlin_rules();
     marlin_timing();
+    marlin_spindle();
     marlin_program();
     printf("machine: %d passed, %d failed\n", n_pass, n_fail);
     return n_fail ? 1 : 0;
