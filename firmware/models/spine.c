@@ -273,6 +273,7 @@ static void sp_restart(struct spine *s)
     s->m[3] = CP_R(1.0);
     sp_atilde(&j, &s->t, &s->r, s->a0);
     s->node = 0u;
+    s->back = 0u;
 }
 
 /* N1(0) from ref (non-zero) or the principal normal */
@@ -430,6 +431,39 @@ static void sp_step(struct spine *s)
     s->node++;
 }
 
+/* node i -> i - 1: sp_step run backwards. Double reflection is its own inverse in exact
+ * arithmetic (the reflection in x_{i-1} - x_i is the first one again; the second reflects
+ * in R1 v2, the image of the forward step's v2), and the Magnus step with the Simpson nodes
+ * reversed and -h is exactly -Omega (s1, s2 and the commutator term all change sign), whose
+ * exponential is the inverse of the forward step's. So a backward pass makes the same
+ * truncation error as the forward march, node by node; only the rounding differs (a few ulp
+ * per step, ~sqrt(K) eps over K steps: ~1e-6 relative in float at K = 2048). */
+static void sp_step_back(struct spine *s)
+{
+    struct spine_jet j;
+    struct cp_vec3 xh, th;
+    cp_real ah[2], a1[2];
+    cp_real n2 = (cp_real)(2u * s->nsteps), h = CP_R(1.0) / (cp_real)s->nsteps;
+    uint32_t k = 2u * s->node - 1u;
+    spine_jet(s, (cp_real)k / n2, &j);
+    xh = j.c;
+    th = j.cu;
+    (void)cp_v3_unit(&th);
+    sp_reflect(&s->x, &s->t, &xh, &th, &s->r);
+    sp_atilde(&j, &th, &s->r, ah);
+    spine_jet(s, (cp_real)(k - 1u) / n2, &j); /* 0 / (2N) = 0 exactly at node 0 */
+    s->x = j.c;
+    s->t = j.cu;
+    (void)cp_v3_unit(&s->t);
+    sp_reflect(&xh, &th, &s->x, &s->t, &s->r);
+    sp_atilde(&j, &s->t, &s->r, a1);
+    sp_magnus(s->m, s->a0, ah, a1, -h);
+    s->a0[0] = a1[0];
+    s->a0[1] = a1[1];
+    s->node--;
+    s->back = 1u;
+}
+
 /* the per-node quantities of MATH-spine 1 from the jet and the march */
 static void sp_fill(const struct spine *s, struct spine_state *st)
 {
@@ -458,25 +492,53 @@ static void sp_fill(const struct spine *s, struct spine_state *st)
     st->m[3] = s->m[3];
 }
 
-int spine_node(struct spine *s, uint16_t i, struct spine_state *st)
+/* fill st from the march; CP_ERR_NUMERIC if a non-finite value appeared */
+static int sp_filled(const struct spine *s, struct spine_state *st)
 {
-    uint32_t k, n;
-    if (s == NULL || st == NULL || i > s->nsteps) {
-        return CP_ERR_RANGE;
-    }
-    if (i < s->node) {
-        sp_restart(s);
-    }
-    n = (uint32_t)i - s->node;
-    for (k = 0; k < n; k++) {
-        sp_step(s);
-    }
     sp_fill(s, st);
     if (!cp_finite(st->m[0] + st->m[1] + st->m[2] + st->m[3]) ||
         !cp_finite(st->n1.x + st->n1.y + st->n1.z)) {
         return CP_ERR_NUMERIC;
     }
     return CP_OK;
+}
+
+int spine_node(struct spine *s, uint16_t i, struct spine_state *st)
+{
+    uint32_t k, n;
+    if (s == NULL || st == NULL || i > s->nsteps) {
+        return CP_ERR_RANGE;
+    }
+    if (s->back || i < s->node) {
+        sp_restart(s);
+    }
+    n = (uint32_t)i - s->node;
+    for (k = 0; k < n; k++) {
+        sp_step(s);
+    }
+    return sp_filled(s, st);
+}
+
+int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st)
+{
+    uint32_t k, n;
+    if (s == NULL || st == NULL || i > s->nsteps) {
+        return CP_ERR_RANGE;
+    }
+    if (s->back && i > s->node) {
+        sp_restart(s);
+    }
+    if (!s->back) {
+        n = (uint32_t)s->nsteps - s->node; /* the forward march on to node N */
+        for (k = 0; k < n; k++) {
+            sp_step(s);
+        }
+    }
+    n = (uint32_t)s->node - i;
+    for (k = 0; k < n; k++) {
+        sp_step_back(s);
+    }
+    return sp_filled(s, st);
 }
 
 /* ---------------------------------------------------------------------- points */
@@ -551,27 +613,32 @@ static cp_real sp_lab(const struct spine_path *it, uint32_t l)
     return it->u0 + (it->u1 - it->u0) * ((cp_real)l / (cp_real)it->nl);
 }
 
-/* Point k as (march node, label index); line and index for raster_pt. */
+/* Point k as (march node, label index); line and index for raster_pt. The pass of a point
+ * (*back): the odd lines of LINES and their links are on the backward pass. */
 static void sp_where(const struct spine_path *it, uint32_t k, uint32_t *node, uint32_t *l,
-                     struct raster_at *at)
+                     uint8_t *back, struct raster_at *at)
 {
     uint32_t lk = (uint32_t)it->head.link + 1u;
     raster_locate(k, it->head.steps, it->head.link, at);
     if (it->head.mode == RASTER_LINES) {
         *node = at->i * it->q;
         *l = at->j * lk + at->a;
+        *back = (uint8_t)(at->j & 1u);
     } else {
         *node = (at->j * lk + at->a) * it->q;
         *l = at->i;
+        *back = 0u;
     }
 }
 
-/* The emitted point at (node, label l). */
-static int sp_emit(struct spine_path *it, uint32_t node, uint32_t l, struct raster_pt *pt)
+/* The emitted point at (node, label l) on the forward or backward pass. */
+static int sp_emit(struct spine_path *it, uint32_t node, uint32_t l, uint8_t back,
+                   struct raster_pt *pt)
 {
     struct spine_state st;
     cp_real r = it->tool_r;
-    int err = spine_node(&it->s, (uint16_t)node, &st);
+    int err = back ? spine_node_back(&it->s, (uint16_t)node, &st)
+                   : spine_node(&it->s, (uint16_t)node, &st);
     if (err != CP_OK) {
         return err;
     }
@@ -905,12 +972,13 @@ int spine_path_next(struct spine_path *it, struct raster_pt *pt)
 {
     struct raster_at at;
     uint32_t node, l;
+    uint8_t back;
     int err;
     if (it->head.k >= it->head.count) {
         return CP_ERR_DONE;
     }
-    sp_where(it, it->head.k, &node, &l, &at);
-    err = sp_emit(it, node, l, pt);
+    sp_where(it, it->head.k, &node, &l, &back, &at);
+    err = sp_emit(it, node, l, back, pt);
     pt->line = (int16_t)at.line;
     pt->index = (uint16_t)at.index;
     if (err == CP_OK) {

@@ -33,7 +33,10 @@
  *
  * Memory: struct spine is the whole context (<= 320 B in the float build, checked by a static
  * assert); no allocation, no table: the march keeps only the current node. spine_node(i)
- * goes forward from the current node, or restarts from u = 0 when i is behind it.
+ * goes forward from the current node, or restarts from u = 0 when i is behind it;
+ * spine_node_back(i) is the backward pass (forward to u = 1 once, then back) that the
+ * backward lines of a zigzag use. Each pass is one fixed sequence of steps, so a node's
+ * state depends only on (pass, node): seeks and resumes are bit for bit.
  */
 #ifndef SPINE_H
 #define SPINE_H
@@ -92,6 +95,7 @@ struct spine {
     uint8_t kind, law;
     uint16_t nsteps;    /* N */
     uint16_t node;      /* the march's current node i (0..N) */
+    uint8_t back;       /* 1: node reached by a backward pass (spine_node_back), 0: forward */
     cp_real sp[12];     /* copy of the spine parameters */
     cp_real rp[4];      /* copy of the law parameters */
     struct cp_vec3 e1;  /* ARC, HELIX: unit in-plane start direction */
@@ -167,6 +171,14 @@ void spine_jet(const struct spine *s, cp_real u, struct spine_jet *j);
  * finite arithmetic; kept as the iterator's guard). Returns CP_OK. */
 int spine_node(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
 
+/* The backward pass: bring the march to node i as reached from node N by backward steps
+ * (sp_step inverted: the same truncation error as the forward march in exact arithmetic,
+ * only the rounding differs). From a forward state the march first goes on to N (cost
+ * N - node steps, once per pass), then back (node - i steps); a backward state ahead of i
+ * steps back, one behind i restarts (i = N is the forward state at N). Errors as
+ * spine_node. */
+int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
+
 /* The label of the line theta0 (radians, any finite value; |theta0| <= 1e5 in the float
  * build): one cp_sincos(theta0 / 2). Lines theta0 and theta0 + 2 pi are the same line. */
 void spine_label(cp_real theta0, struct spine_label *lab);
@@ -212,11 +224,10 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  * (CIRCLES, q rounded up to even), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
  * MATH-spine 9.3: 32 nodes keep the helix tube, C = 37.2, at 3.5e-5 mm before float
  * rounding), N <= SPINE_NSTEPS_MAX (else CP_ERR_TOO_MANY).
- * Cost: the march goes forward only, except on the odd (backward) lines of LINES: each of
- * their points restarts from u = 0 (spine_node), i.e. i q march steps for the point at node
- * i q, about N^2/2 march steps per odd line (N = 64: ~2 100 steps, each 2 jets + 2 double
- * reflections + 1 Magnus step) instead of N. CIRCLES never restarts. A seek costs at most one
- * restart plus the march to the point's node.
+ * Cost: q march steps per point (each 2 jets + 2 double reflections + 1 Magnus step); the
+ * odd (backward) lines of LINES and their links run spine_node_back: one backward step per
+ * node, the forward march on to u = 1 done by the line before. A seek costs at most one
+ * restart plus the march to the point's node (2N steps for a point on a backward line).
  * Output: SURFACE the surface point m; CENTRE the ball-end centre m - r n (inside tool: the
  * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
  * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
@@ -262,7 +273,7 @@ uint32_t spine_path_count(const struct spine_path *it);
 int spine_path_next(struct spine_path *it, struct raster_pt *pt);
 
 /* Restart at point k (0 <= k <= count; CP_ERR_RANGE otherwise): the next point is bit for
- * bit the k-th of a full walk (the march from u = 0 is one fixed sequence of steps). */
+ * bit the k-th of a full walk (each pass of the march is one fixed sequence of steps). */
 CP_MUST_CHECK int spine_path_seek(struct spine_path *it, uint32_t k);
 
 #endif /* SPINE_H */
