@@ -147,6 +147,16 @@ int test_spine_convergence(void)
     return 0;
 }
 
+/* every field of two node states equal (padding aside) */
+static int same_state(const struct spine_state *a, const struct spine_state *b)
+{
+    return a->u == b->u && a->node == b->node && memcmp(&a->c, &b->c, sizeof a->c) == 0 &&
+           memcmp(&a->t, &b->t, sizeof a->t) == 0 && memcmp(&a->n1, &b->n1, sizeof a->n1) == 0 &&
+           memcmp(&a->n2, &b->n2, sizeof a->n2) == 0 && a->r == b->r && a->a == b->a &&
+           a->b == b->b && a->as == b->as && a->k1 == b->k1 && a->k2 == b->k2 &&
+           memcmp(a->m, b->m, sizeof a->m) == 0;
+}
+
 /* circles, restart (backward spine_node is bit-identical), labels vs theta0, regularity */
 int test_spine_circles(void)
 {
@@ -181,6 +191,40 @@ int test_spine_circles(void)
     CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst / 2u), &st), CP_OK);
     CHECK(st.m[0] == st2.m[0] && st.m[3] == st2.m[3] && st.n1.x == st2.n1.x && st.c.y == st2.c.y);
     CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst + 1u), &st), CP_ERR_RANGE);
+    CHECK_EQ_INT(spine_node_back(&s, (uint16_t)(nst + 1u), &st), CP_ERR_RANGE);
+    /* the backward pass: the forward march's values up to rounding at every node, one fixed
+     * sequence (a second pass is bit for bit the first), back at N = the forward state */
+    {
+        struct spine_state fw[65], bk;
+        double dm = 0.0, dn = 0.0;
+        for (i = 0; i <= nst; i++) {
+            CHECK_EQ_INT(spine_node(&s, (uint16_t)i, &fw[i]), CP_OK);
+        }
+        CHECK_EQ_INT(spine_node_back(&s, (uint16_t)nst, &bk), CP_OK);
+        CHECK(same_state(&bk, &fw[nst]));
+        for (i = nst + 1u; i-- > 0u;) {
+            int q;
+            CHECK_EQ_INT(spine_node_back(&s, (uint16_t)i, &bk), CP_OK);
+            for (q = 0; q < 4; q++) {
+                double d = fabs((double)bk.m[q] - (double)fw[i].m[q]);
+                dm = d > dm ? d : dm;
+            }
+            dn = fmax(dn, fabs((double)bk.n1.x - (double)fw[i].n1.x) +
+                              fabs((double)bk.n1.y - (double)fw[i].n1.y) +
+                              fabs((double)bk.n1.z - (double)fw[i].n1.z));
+            CHECK(bk.node == i && bk.c.x == fw[i].c.x && bk.r == fw[i].r);
+        }
+        CHECK_EQ_INT(spine_node_back(&s, (uint16_t)(nst / 2u), &st2), CP_OK); /* restart */
+        CHECK_EQ_INT(spine_node_back(&s, (uint16_t)(nst / 4u), &bk), CP_OK);
+        CHECK_EQ_INT(spine_node_back(&s, (uint16_t)(nst / 2u), &st), CP_OK);
+        CHECK(same_state(&st, &st2));
+        TEST_NOTE("spine backward pass (N = %u): |M_back - M_fwd| <= %.2g, |N1| %.2g (%s)\n", nst,
+                  dm, dn, CP_REAL_NAME);
+        CHECK(dm <= (CP_REAL_DOUBLE ? 1e-13 : 1e-5) && dn <= (CP_REAL_DOUBLE ? 1e-13 : 1e-5));
+        CHECK_EQ_INT(spine_node(&s, 0u, &st2), CP_OK); /* forward again: restart at u = 0 */
+        CHECK(same_state(&st2, &fw[0]));
+    }
+    CHECK_EQ_INT(spine_node(&s, (uint16_t)(nst / 2u), &st2), CP_OK);
     {
         struct raster_pt a, b;
         struct spine_label lab;
