@@ -3,6 +3,8 @@
  * docs/MATH-spine.md sections 2-5 and 9.
  * SPDX-License-Identifier: MIT
  */
+#include <string.h>
+
 #include "spine.h"
 #include "cp_math.h"
 
@@ -272,6 +274,7 @@ static void sp_restart(struct spine *s)
     s->m[2] = CP_R(0.0);
     s->m[3] = CP_R(1.0);
     sp_atilde(&j, &s->t, &s->r, s->a0);
+    s->j = j;
     s->node = 0u;
     s->back = 0u;
 }
@@ -428,6 +431,7 @@ static void sp_step(struct spine *s)
     sp_magnus(s->m, s->a0, ah, a1, h);
     s->a0[0] = a1[0];
     s->a0[1] = a1[1];
+    s->j = j;
     s->node++;
 }
 
@@ -460,36 +464,47 @@ static void sp_step_back(struct spine *s)
     sp_magnus(s->m, s->a0, ah, a1, -h);
     s->a0[0] = a1[0];
     s->a0[1] = a1[1];
+    s->j = j;
     s->node--;
     s->back = 1u;
+}
+
+/* o = k a */
+static void sp_scale(struct cp_vec3 *o, cp_real k, const struct cp_vec3 *a)
+{
+    o->x = k * a->x;
+    o->y = k * a->y;
+    o->z = k * a->z;
 }
 
 /* the per-node quantities of MATH-spine 1 from the jet and the march */
 static void sp_fill(const struct spine *s, struct spine_state *st)
 {
-    struct spine_jet j;
+    const struct spine_jet *j = &s->j; /* the jet at u = node / N */
     cp_real v, vv, a;
     st->node = s->node;
     st->u = (cp_real)s->node / (cp_real)s->nsteps;
-    spine_jet(s, st->u, &j);
-    st->c = j.c;
+    st->c = j->c;
     st->t = s->t;
     cp_v3_comb(&st->n1, CP_R(1.0), &s->r, -cp_v3_dot(&s->r, &s->t), &s->t);
     (void)cp_v3_unit(&st->n1);
     cp_v3_cross(&st->t, &st->n1, &st->n2);
-    v = cp_v3_norm(&j.cu);
+    v = cp_v3_norm(&j->cu);
     vv = v * v;
-    a = j.ru / v;
-    st->r = j.r;
+    a = j->ru / v;
+    st->r = j->r;
     st->a = a;
     st->b = cp_sqrt((CP_R(1.0) - a) * (CP_R(1.0) + a));
-    st->as = (j.ruu - a * cp_v3_dot(&j.cu, &j.cuu) / v) / vv;
-    st->k1 = cp_v3_dot(&j.cuu, &st->n1) / vv;
-    st->k2 = cp_v3_dot(&j.cuu, &st->n2) / vv;
+    st->as = (j->ruu - a * cp_v3_dot(&j->cu, &j->cuu) / v) / vv;
+    st->k1 = cp_v3_dot(&j->cuu, &st->n1) / vv;
+    st->k2 = cp_v3_dot(&j->cuu, &st->n2) / vv;
     st->m[0] = s->m[0];
     st->m[1] = s->m[1];
     st->m[2] = s->m[2];
     st->m[3] = s->m[3];
+    sp_scale(&st->at, -a, &st->t);
+    sp_scale(&st->bn1, st->b, &st->n1);
+    sp_scale(&st->bn2, st->b, &st->n2);
 }
 
 /* fill st from the march; CP_ERR_NUMERIC if a non-finite value appeared */
@@ -564,12 +579,13 @@ void spine_angle(const struct spine_state *st, const struct spine_label *lab, cp
 static void sp_surface(const struct spine_state *st, cp_real ct, cp_real sn, cp_real off,
                        struct raster_pt *pt)
 {
-    struct cp_vec3 e, n;
     cp_real rr = st->r + off;
-    cp_v3_comb(&e, ct, &st->n1, sn, &st->n2);
-    cp_v3_comb(&n, -st->a, &st->t, st->b, &e);
-    pt->n = n;
-    cp_v3_comb(&pt->p, CP_R(1.0), &st->c, rr, &n);
+    pt->n.x = st->at.x + ct * st->bn1.x + sn * st->bn2.x;
+    pt->n.y = st->at.y + ct * st->bn1.y + sn * st->bn2.y;
+    pt->n.z = st->at.z + ct * st->bn1.z + sn * st->bn2.z;
+    pt->p.x = st->c.x + rr * pt->n.x;
+    pt->p.y = st->c.y + rr * pt->n.y;
+    pt->p.z = st->c.z + rr * pt->n.z;
     pt->t = st->u;
 }
 
@@ -642,7 +658,11 @@ static int sp_emit(struct spine_path *it, uint32_t node, uint32_t l, uint8_t bac
     if (err != CP_OK) {
         return err;
     }
-    spine_point(&st, sp_lab(it, l), CP_R(0.0), pt);
+    if (l != it->lab_l) { /* the label is a function of l alone: caching keeps seeks exact */
+        spine_label(sp_lab(it, l), &it->lab);
+        it->lab_l = l;
+    }
+    spine_point_label(&st, &it->lab, CP_R(0.0), pt);
     cp_v3_comb(&pt->p, CP_R(1.0), &pt->p, -r, &pt->n);
     if (it->output == RASTER_OUT_TIP) {
         pt->p.z -= r;
@@ -795,6 +815,7 @@ static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
     for (j = 0; j < it->head.n; j++) {
         struct raster_pt p[3];
         struct spine_state st;
+        memset(p, 0, sizeof p); /* p[0], p[1] are read only from i = 2 on */
         cp_real fj = it->head.n > 1u ? (cp_real)j / (cp_real)(it->head.n - 1u) : CP_R(0.0);
         nodes = it->head.mode == RASTER_LINES ? 0u : (uint32_t)(fj * (cp_real)it->s.nsteps + CP_R(0.5));
         for (i = 0; i <= steps; i++) {
@@ -955,6 +976,7 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     }
     it->head.count = raster_count(it->head.n, it->head.steps, it->head.link);
     it->head.k = 0u;
+    it->lab_l = UINT32_MAX;
     return CP_OK;
 }
 

@@ -89,6 +89,12 @@ struct spine_cfg {
                        direction, copied into sp[] at RUN), ignored by spine_init */
 };
 
+/* The jet of the spine and the law at one u (spine_jet). */
+struct spine_jet {
+    struct cp_vec3 c, cu, cuu;
+    cp_real r, ru, ruu;
+};
+
 /* The context: the validated configuration and the march's current node. Read-only for the
  * caller; changed by spine_init and spine_node only. */
 struct spine {
@@ -110,6 +116,7 @@ struct spine {
     struct cp_vec3 r;   /* N1 carried by double reflection (renormalized at output only) */
     cp_real m[4];       /* transport M = [[m0, m1], [m2, m3]] */
     cp_real a0[2];      /* A~(u_i) = [[-a0[0], a0[1]], [a0[1], a0[0]]] */
+    struct spine_jet j; /* the jet at u_i (the step's last evaluation, reused by the fill) */
 };
 
 /* Everything a point at node u_i needs (spine_node fills it; shared by all lines there). */
@@ -125,6 +132,10 @@ struct spine_state {
     cp_real as;          /* da/ds, 1/mm */
     cp_real k1, k2;      /* T' = k1 N1 + k2 N2 (per mm of arc) */
     cp_real m[4];        /* transport M(u_i), det = 1 up to rounding */
+    /* shared by every point at this node: n = at + cos(theta) bn1 + sin(theta) bn2 */
+    struct cp_vec3 at;   /* -a T */
+    struct cp_vec3 bn1;  /* b N1 */
+    struct cp_vec3 bn2;  /* b N2 */
 };
 
 /* The homogeneous label of a family-2 line: (sin(theta0/2), cos(theta0/2)). */
@@ -158,10 +169,6 @@ int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps) CP
 
 /* The jet of the spine and the law at u (meaningful for u in [0, 1]): c, c_u, c_uu (mm per
  * unit u), R, R_u, R_uu. One cp_sincos for ARC and HELIX, one for the COS law. Cannot fail. */
-struct spine_jet {
-    struct cp_vec3 c, cu, cuu;
-    cp_real r, ru, ruu;
-};
 void spine_jet(const struct spine *s, cp_real u, struct spine_jet *j);
 
 /* Bring the march to node i (0 <= i <= N) and fill *st. Forward from the current node (cost
@@ -257,6 +264,8 @@ struct spine_path {
     uint16_t nl;             /* label intervals: LINES (n - 1)(link + 1), CIRCLES steps */
     cp_real tool_r;          /* mm */
     cp_real u0, u1;          /* label range, radians */
+    uint32_t lab_l;          /* the label index of `lab` (UINT32_MAX: none yet) */
+    struct spine_label lab;  /* the last label made: one cp_sincos per line, not per point */
     struct spine s;          /* the kernel and its march */
 };
 
