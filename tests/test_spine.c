@@ -709,3 +709,59 @@ int test_spine_path_tol(void)
     }
     return 0;
 }
+
+/* Orthogonality of the two families in the firmware's own arithmetic: the family-2 line's
+ * tangent by the 4th-order central difference (8 (p+1 - p-1) - (p+2 - p-2)) / 12 of its
+ * points at neighbouring march nodes (truncation ~ h^4 |m^(5)| / 30, below 1e-7 rad at
+ * N = 256 on these shapes; float rounding ~ 1e-6 mm / (h |m_u|)) against the circle's
+ * tangent b (-sin theta N1 + cos theta N2) at the middle node. Acceptance: <= 0.01 deg. */
+int test_spine_orthogonality(void)
+{
+    static const int use[3] = {0, 1, 2};
+    const unsigned nst = 256u;
+    int k;
+    for (k = 0; k < 3; k++) {
+        const struct shape *sh = &shapes[use[k]];
+        struct spine_cfg cfg;
+        struct spine s;
+        double worst = 0.0;
+        unsigned i;
+        cfg_of(sh, &cfg);
+        CHECK_EQ_INT(spine_init(&s, &cfg, (uint16_t)nst), CP_OK);
+        for (i = 2u; i + 2u <= nst; i += 9u) {
+            int l;
+            for (l = 0; l < 5; l++) {
+                struct spine_label lab;
+                struct raster_pt p[5];
+                struct spine_state st;
+                double d[3], c[3], dd = 0.0, cc = 0.0, dc = 0.0, ang;
+                cp_real ct, sn;
+                int q;
+                spine_label((cp_real)(-2.5 + 1.25 * l), &lab);
+                for (q = 0; q < 5; q++) {
+                    CHECK_EQ_INT(spine_node(&s, (uint16_t)(i + (unsigned)q - 2u), &st), CP_OK);
+                    spine_point_label(&st, &lab, CP_R(0.0), &p[q]);
+                }
+                CHECK_EQ_INT(spine_node(&s, (uint16_t)i, &st), CP_OK);
+                spine_angle(&st, &lab, &ct, &sn);
+                c[0] = (double)st.b * (-(double)sn * st.n1.x + (double)ct * st.n2.x);
+                c[1] = (double)st.b * (-(double)sn * st.n1.y + (double)ct * st.n2.y);
+                c[2] = (double)st.b * (-(double)sn * st.n1.z + (double)ct * st.n2.z);
+                d[0] = (8.0 * ((double)p[3].p.x - p[1].p.x) - ((double)p[4].p.x - p[0].p.x)) / 12.0;
+                d[1] = (8.0 * ((double)p[3].p.y - p[1].p.y) - ((double)p[4].p.y - p[0].p.y)) / 12.0;
+                d[2] = (8.0 * ((double)p[3].p.z - p[1].p.z) - ((double)p[4].p.z - p[0].p.z)) / 12.0;
+                for (q = 0; q < 3; q++) {
+                    dd += d[q] * d[q];
+                    cc += c[q] * c[q];
+                    dc += d[q] * c[q];
+                }
+                ang = fabs(asin(fmin(1.0, fabs(dc) / sqrt(dd * cc)))) * 180.0 / PI_D;
+                worst = ang > worst ? ang : worst;
+            }
+        }
+        TEST_NOTE("spine %s: line/circle orthogonality max %.2g deg off 90 (N = %u, %s)\n",
+                  sh->name, worst, nst, CP_REAL_NAME);
+        CHECK(worst <= 0.01);
+    }
+    return 0;
+}
