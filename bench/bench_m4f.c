@@ -30,6 +30,7 @@
 #include "drc.h"
 #include "channel.h"
 #include "gsr.h"
+#include "spine.h"
 
 #ifdef BENCH_HOST
 #include <stdio.h>
@@ -605,6 +606,98 @@ static void call_place_init(void)
     bench_sink = (int32_t)bench_pl.on;
 }
 
+/* ---- SPINE (issue 18): one streamed point of one line, and one more line at the same node ---- */
+static struct spine_path sp_it;
+static struct raster_pt sp_pt;
+static struct spine_state sp_st;
+static struct spine_label sp_lab;
+static struct spine_cfg sp_g;
+
+/* helix tube (axis z, r 15, pitch 10, 2 turns) with R = 1.5 cos(8 pi u) + 4 (COS law), or the
+ * Bezier blend with a CUBIC radius (tests/test_spine.c shapes); LINES 4 x 257 points: q = 1
+ * march step per point. `skip` points first: 100 lands on line 0 (forward), 400 on line 1
+ * (the backward pass). */
+static void spine_setup(int bezier, uint32_t skip)
+{
+    static const cp_real helix[12] = {0, 0, 0, 0, 0, 1, 15, 10, 2, 1, 0, 0};
+    static const cp_real bez[12] = {0, 0, 0, 25, 35, 15, 60, -25, 35, 90, 10, 5};
+    struct spine_cfg *g = &sp_g;
+    struct raster_cfg c;
+    uint32_t i;
+    memset(g, 0, sizeof *g);
+    memset(&c, 0, sizeof c);
+    g->kind = bezier ? SPINE_BEZIER : SPINE_HELIX;
+    g->law = bezier ? SPINE_R_CUBIC : SPINE_R_COS;
+    memcpy(g->sp, bezier ? bez : helix, sizeof g->sp);
+    g->rp[0] = bezier ? CP_R(3.0) : CP_R(1.5);
+    g->rp[1] = bezier ? CP_R(6.0) : CP_R(4.0);
+    g->rp[2] = bezier ? CP_R(2.0) : CP_R(4.0);
+    g->rp[3] = bezier ? CP_R(5.0) : CP_R(0.0);
+    c.mode = RASTER_LINES;
+    c.n = 4;
+    c.u0 = CP_R(-2.5);
+    c.u1 = CP_R(2.5);
+    c.steps = 256;
+    c.link = 0;
+    c.output = RASTER_OUT_CENTRE;
+    c.tool_r = CP_R(1.0);
+    bench_sink = spine_path_init(&sp_it, g, &c);
+    for (i = 0; i < skip; i++) {
+        bench_sink = spine_path_next(&sp_it, &sp_pt);
+    }
+}
+
+static void setup_spine_helix_fwd(void)
+{
+    spine_setup(0, 100u);
+}
+
+static void setup_spine_helix_back(void)
+{
+    spine_setup(0, 400u);
+}
+
+static void setup_spine_bezier_fwd(void)
+{
+    spine_setup(1, 100u);
+}
+
+static void call_spine_next(void)
+{
+    bench_sink = spine_path_next(&sp_it, &sp_pt);
+}
+
+/* the node state of the helix at u = 100/256, the label made once: what a second line at
+ * the same node costs (spine_point_label; the label's cp_sincos is per line, once) */
+static void setup_spine_extra(void)
+{
+    spine_setup(0, 0u);
+    bench_sink = spine_node(&sp_it.s, 100u, &sp_st);
+    spine_label(CP_R(0.7), &sp_lab);
+}
+
+static void call_spine_extra(void)
+{
+    spine_point_label(&sp_st, &sp_lab, CP_R(-1.0), &sp_pt);
+    bench_sink = (int32_t)(sp_pt.p.z * CP_R(1000.0));
+}
+
+/* spine_path_init of the Bezier blend, LINES 4, TOL 2 um (steps and link derived) */
+static void call_spine_init(void)
+{
+    struct raster_cfg c;
+    memset(&c, 0, sizeof c);
+    c.mode = RASTER_LINES;
+    c.n = 4;
+    c.u0 = CP_R(-2.5);
+    c.u1 = CP_R(2.5);
+    c.tol = CP_R(0.002);
+    c.link = RASTER_LINK_AUTO;
+    c.output = RASTER_OUT_CENTRE;
+    c.tool_r = CP_R(1.0);
+    bench_sink = spine_path_init(&sp_it, &sp_g, &c);
+}
+
 static const struct bench_case cases[] = {
     {"empty", setup_none, call_empty}, /* must stay first: the baseline */
     {"fmt_fixed", setup_fmt_fixed, call_fmt_fixed},
@@ -637,6 +730,11 @@ static const struct bench_case cases[] = {
     {"gsr_arclen_init", setup_none, call_gsr_arclen_init},
     {"place_apply_point", setup_place, call_place_apply},
     {"place_init_run", setup_place, call_place_init},
+    {"spine_pt_helix_cos", setup_spine_helix_fwd, call_spine_next},
+    {"spine_pt_helix_cos_back", setup_spine_helix_back, call_spine_next},
+    {"spine_pt_bezier_cubic", setup_spine_bezier_fwd, call_spine_next},
+    {"spine_point_extra_line", setup_spine_extra, call_spine_extra},
+    {"spine_init_bezier_tol2um", setup_spine_bezier_fwd, call_spine_init},
 };
 
 #define N_CASES (sizeof cases / sizeof cases[0])

@@ -205,7 +205,8 @@ machines)
     # machine's motion at 1/200 of real time (its planner fills, oks wait for it)
     for job in paper_gcode paper_frames boss_gcode boss_frames placed_gcode placed_frames \
                model_gsr_gcode model_gsr_frames model_gsr_placed model_channel_gcode \
-               model_channel_frames model_drc_curve model_drc_fillet; do
+               model_channel_frames model_drc_curve model_drc_fillet model_spine_gcode \
+               model_spine_frames model_spine_demo; do
         hs "grbl_$job" native --job "$J/$job.job" --machine grbl --machine-time 0.005
         result "grbl_$job" $? "$(figs "grbl_$job")"
         hs "marlin_$job" native --job "$J/$job.job" --machine marlin --advanced-ok \

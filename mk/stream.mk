@@ -7,12 +7,12 @@ sim-pyserial: $(BUILD)/host/fw_native
 	$(Q)BUILD=$(BUILD) sh tools/pyserial_test.sh
 
 .PHONY: demo sim-rs274
-## demo: the paper's example (G-code), a boss fillet (frames, ball tool) and one job of each model (GSR, channel, DRC fillet) through the
+## demo: the paper's example (G-code), a boss fillet (frames, ball tool) and one job of each model (GSR, channel, DRC fillet, SPINE helix bore) through the
 ##       firmware on a pty, judged by host_sim: summary tables, CSV, G-code and SVG in build/demo; then the paper
 ##       as a program to host_sim's grbl 1.1h on the machine link (two links)
 demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/demo
-	$(Q)for j in paper_gcode boss_frames model_gsr_frames model_channel_frames model_drc_fillet; do \
+	$(Q)for j in paper_gcode boss_frames model_gsr_frames model_channel_frames model_drc_fillet model_spine_demo; do \
 	    echo "== $$j: tests/jobs/$$j.job through build/host/fw_native on a pty"; \
 	    $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/demo/$$j.csv --gcode $(BUILD)/demo/$$j.ngc --svg $(BUILD)/demo/$$j.svg \
@@ -20,16 +20,16 @@ demo: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@echo "== paper_gcode.job in a two-link cell: the program to host_sim's grbl 1.1h on the machine link"
 	$(Q)$(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/paper_gcode.job \
 	    --machine grbl --gcode $(BUILD)/demo/paper_grbl.ngc | grep -E '^sim: cell|FAIL|^sim: [0-9]' || exit 1
-	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge); the grbl program in $(BUILD)/demo/paper_grbl.ngc"
+	@echo "demo: toolpaths drawn in $(BUILD)/demo/*.svg (the paper, a boss fillet, a GSR pipe, the channel, a fillet along a sketched edge, the bore of a helix tube); the grbl program in $(BUILD)/demo/paper_grbl.ngc"
 
 ## sim-rs274: LinuxCNC's rs274 runs every G-code program of the suite (the paper; the boss with a
-##            ball tool; placed on an inclined face; the GSR, channel and DRC jobs; 5-axis A/C words
+##            ball tool; placed on an inclined face; the GSR, channel, DRC and SPINE jobs; 5-axis A/C words
 ##            with a spindle and a work offset; a job that first lacks FEED) with 0 errors: every
 ##            STRAIGHT_FEED equals the received point to 0.1 um, every STRAIGHT_TRAVERSE is at the
 ##            safe height above the cut, A/C equal the judged tool axis (word "rs274")
 sim-rs274: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	@mkdir -p $(BUILD)/rs274
-	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode placed_gcode model_gsr_gcode model_channel_gcode \
+	$(Q)ok=0; bad=0; for j in paper_gcode boss_gcode placed_gcode model_gsr_gcode model_channel_gcode model_spine_gcode \
 	    model_drc_curve axis5_ac no_feed; do \
 	    if $(BUILD)/host/host_sim --target native --fw $(BUILD)/host/fw_native --job tests/jobs/$$j.job \
 	        --csv $(BUILD)/rs274/$$j.csv --gcode $(BUILD)/rs274/$$j.ngc > $(BUILD)/rs274/$$j.log 2>&1; then \

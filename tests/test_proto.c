@@ -231,11 +231,11 @@ int test_proto_info(void)
     pump(&p);
     snprintf(want, sizeof want,
              "[VER:canalpath %s proto %d]\n[OPT:real=%s,line=%d,tx=%d,steps=%d,sub=%d,lines=%d,"
-             "link=%d,window=%d,models=CANAL%s%s%s]\nok\n",
+             "link=%d,window=%d,models=CANAL%s%s%s%s]\nok\n",
              CP_FW_VERSION, CP_PROTO_VERSION, CP_REAL_NAME, CP_LINE_MAX, CP_TX_BUF, CP_MAX_STEPS,
              CP_MAX_SUBSTEPS, CP_MAX_LINES, CP_MAX_LINK, (int)OUT_FRAMES_WINDOW,
              CP_WITH_GSR ? "+GSR" : "", CP_WITH_CHANNEL ? "+CHANNEL" : "",
-             CP_WITH_DRC ? "+DRC" : "");
+             CP_WITH_DRC ? "+DRC" : "", CP_WITH_SPINE ? "+SPINE" : "");
     i = strlen(want);
     CHECK(m.out_len == 2 * i + strlen("ok\nerror:1 unknown command\n"));
     CHECK(memcmp(m.out, want, i) == 0);

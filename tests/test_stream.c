@@ -439,6 +439,18 @@ static const struct {
     {{GOOD_CANAL, "MACHINE GRBL", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "MACHINE LINUXCNC", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "LINK MACHINE", NULL}, CP_ST_NO_MACHINE_LINK},
+#if CP_WITH_SPINE
+    /* SURFACE SPINE: a cusp (an arc of radius 5 with R = 6), a straight spine without
+     * SPINEREF, the tool, TOL alone beyond the march */
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 6", "LINES 4 -180 90",
+      "STEPS 16", NULL}, CP_ST_CUSP},
+    {{"SURFACE SPINE", "SPINE LINE 0 0 0 10 0 0", "RADIUS CONST 6", "LINES 4 -180 90", "STEPS 16",
+      NULL}, CP_ST_FRENET},
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 4", "LINES 4 -90 90",
+      "STEPS 16", "TOOL BALL 4", NULL}, CP_ST_TOOL},
+    {{"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 60", "RADIUS CONST 4", "LINES 4 -90 90",
+      "TOL 0.01", NULL}, CP_ST_TOL},
+#endif
 };
 
 /* A model's command refused on its own, under its SURFACE. */
@@ -453,6 +465,12 @@ static const struct {
     {"SURFACE GSR", "RADII T 0 2 0 0 0 0 0", CP_ST_FT_RANGE},
     {"SURFACE GSR", "RADII T 1 -1 0 0 0 0 0", CP_ST_FT_RANGE},
     {"SURFACE GSR", "RADII T 0.5 0 0 0 0 0 0", CP_ST_FT_RANGE},
+#if CP_WITH_SPINE
+    {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2 1", CP_ST_BAD_ARITY},
+    {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2e4", CP_ST_OUT_OF_RANGE},
+    {"SURFACE SPINE", "SPINE ARC 0 0 0 0 0 1 5 400", CP_ST_OUT_OF_RANGE},
+    {"SURFACE SPINE", "SPINE KNOT 1 2 3", CP_ST_BAD_KEYWORD},
+#endif
 };
 
 int test_stream_bad_input(void)
@@ -575,6 +593,14 @@ int test_stream_job_dump(void)
          "LINES 7 -90 90", NULL},
         {"SURFACE GSR", "CENTER X 0 8 0 0 0 0 0", "CENTER Z 0 0 0 0 2 0 180",
          "RADII N 1.2 0 0 0 0.5 0 180", "RADII B 0.8 0.3 0 0 0 0 0", "FRAME RMF 0 0 1", NULL},
+#if CP_WITH_SPINE
+        {"SURFACE SPINE", "SPINE P0 0 0 0", "SPINE P1 25 35 15", "SPINE P2 60 -25 35",
+         "SPINE P3 90 10 5", "RADIUS CUBIC 3 6 2 5", "SPINEREF 0 0 1", "LINES 6 -150 150", NULL},
+        {"SURFACE SPINE", "SPINE ARC 10 -5 20 1 -2 3 40 270", "SPINEDIR 1 1 0",
+         "RADIUS LINEAR 3 10", "CIRCLES 7 -170 170 PATCH", "TOL 10", NULL},
+        {"SURFACE SPINE", "SPINE HELIX 0 0 0 0 0 1 15 10 2", "RADIUS COS 1.5 4 3",
+         "LINES 5 -140 140", "STEPS 40", NULL},
+#endif
         /* SECTION's rows are computed from its angles: in the double build they need
          * 17 digits each, and AXES with six of them exceeds the line (PROTOCOL.md, $J) */
 #if CP_REAL_DOUBLE

@@ -94,6 +94,9 @@
 /* The example model of docs/ARCHITECTURE.md (a flat strip): test builds only.
  * Every CP_WITH_<M> must be a literal 0 or 1 (not 1u): path.h's PATH_IF pastes it into a
  * macro name. */
+#ifndef CP_WITH_SPINE
+#define CP_WITH_SPINE 1
+#endif
 #ifndef CP_WITH_PLANE
 #define CP_WITH_PLANE 0
 #endif
@@ -127,8 +130,9 @@
 #endif
 
 #if (CP_WITH_GSR != 0 && CP_WITH_GSR != 1) || (CP_WITH_CHANNEL != 0 && CP_WITH_CHANNEL != 1) || \
-    (CP_WITH_DRC != 0 && CP_WITH_DRC != 1) || (CP_WITH_PLANE != 0 && CP_WITH_PLANE != 1)
-#error "CP_WITH_GSR, CP_WITH_CHANNEL, CP_WITH_DRC and CP_WITH_PLANE must be 0 or 1"
+    (CP_WITH_DRC != 0 && CP_WITH_DRC != 1) || (CP_WITH_PLANE != 0 && CP_WITH_PLANE != 1) || \
+    (CP_WITH_SPINE != 0 && CP_WITH_SPINE != 1)
+#error "CP_WITH_GSR, CP_WITH_CHANNEL, CP_WITH_DRC, CP_WITH_PLANE and CP_WITH_SPINE must be 0 or 1"
 #endif
 #if CP_MAX_SECTIONS < 2 || CP_MAX_SECTIONS > 4
 #error "CP_MAX_SECTIONS must be in 2..4"

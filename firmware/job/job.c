@@ -174,6 +174,15 @@ void job_geom_fill(struct job *j)
         }
     }
 #endif
+#if CP_WITH_SPINE
+    if (j->kind == PATH_SPINE) { /* the radius law in u: the canal's RADIUS (same enum) */
+        job_spine_fill(&j->geom.spine);
+        j->geom.spine.law = j->canal.radius;
+        for (i = 0; i < 4u; i++) {
+            j->geom.spine.rp[i] = j->canal.rp[i];
+        }
+    }
+#endif
     (void)i;
 }
 

@@ -285,6 +285,8 @@ enum job_scale {
     int job_##name##_dump(const struct job *j, unsigned i, struct job_args *a);
 #include "models.def"
 #undef CP_MODEL
+/* SURFACE SPINE: SPINEDIR into the spine kind's sp[] slots (job_geom_fill, at RUN). */
+void job_spine_fill(struct spine_cfg *c);
 
 /* Defaults: nothing set, TOL 1 um, FORMAT GCODE, RXBUF 128, CHECKSUM OFF, TOOL NONE,
  * no placement (PLACE 0 0 0 0, TILT 0 0). */

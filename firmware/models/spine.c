@@ -3,6 +3,8 @@
  * docs/MATH-spine.md sections 2-5 and 9.
  * SPDX-License-Identifier: MIT
  */
+#include <string.h>
+
 #include "spine.h"
 #include "cp_math.h"
 
@@ -272,7 +274,9 @@ static void sp_restart(struct spine *s)
     s->m[2] = CP_R(0.0);
     s->m[3] = CP_R(1.0);
     sp_atilde(&j, &s->t, &s->r, s->a0);
+    s->j = j;
     s->node = 0u;
+    s->back = 0u;
 }
 
 /* N1(0) from ref (non-zero) or the principal normal */
@@ -427,35 +431,91 @@ static void sp_step(struct spine *s)
     sp_magnus(s->m, s->a0, ah, a1, h);
     s->a0[0] = a1[0];
     s->a0[1] = a1[1];
+    s->j = j;
     s->node++;
+}
+
+/* node i -> i - 1: sp_step run backwards. Double reflection is its own inverse in exact
+ * arithmetic (the reflection in x_{i-1} - x_i is the first one again; the second reflects
+ * in R1 v2, the image of the forward step's v2), and the Magnus step with the Simpson nodes
+ * reversed and -h is exactly -Omega (s1, s2 and the commutator term all change sign), whose
+ * exponential is the inverse of the forward step's. So a backward pass makes the same
+ * truncation error as the forward march, node by node; only the rounding differs (a few ulp
+ * per step, ~sqrt(K) eps over K steps: ~1e-6 relative in float at K = 2048). */
+static void sp_step_back(struct spine *s)
+{
+    struct spine_jet j;
+    struct cp_vec3 xh, th;
+    cp_real ah[2], a1[2];
+    cp_real n2 = (cp_real)(2u * s->nsteps), h = CP_R(1.0) / (cp_real)s->nsteps;
+    uint32_t k = 2u * s->node - 1u;
+    spine_jet(s, (cp_real)k / n2, &j);
+    xh = j.c;
+    th = j.cu;
+    (void)cp_v3_unit(&th);
+    sp_reflect(&s->x, &s->t, &xh, &th, &s->r);
+    sp_atilde(&j, &th, &s->r, ah);
+    spine_jet(s, (cp_real)(k - 1u) / n2, &j); /* 0 / (2N) = 0 exactly at node 0 */
+    s->x = j.c;
+    s->t = j.cu;
+    (void)cp_v3_unit(&s->t);
+    sp_reflect(&xh, &th, &s->x, &s->t, &s->r);
+    sp_atilde(&j, &s->t, &s->r, a1);
+    sp_magnus(s->m, s->a0, ah, a1, -h);
+    s->a0[0] = a1[0];
+    s->a0[1] = a1[1];
+    s->j = j;
+    s->node--;
+    s->back = 1u;
+}
+
+/* o = k a */
+static void sp_scale(struct cp_vec3 *o, cp_real k, const struct cp_vec3 *a)
+{
+    o->x = k * a->x;
+    o->y = k * a->y;
+    o->z = k * a->z;
 }
 
 /* the per-node quantities of MATH-spine 1 from the jet and the march */
 static void sp_fill(const struct spine *s, struct spine_state *st)
 {
-    struct spine_jet j;
+    const struct spine_jet *j = &s->j; /* the jet at u = node / N */
     cp_real v, vv, a;
     st->node = s->node;
     st->u = (cp_real)s->node / (cp_real)s->nsteps;
-    spine_jet(s, st->u, &j);
-    st->c = j.c;
+    st->c = j->c;
     st->t = s->t;
     cp_v3_comb(&st->n1, CP_R(1.0), &s->r, -cp_v3_dot(&s->r, &s->t), &s->t);
     (void)cp_v3_unit(&st->n1);
     cp_v3_cross(&st->t, &st->n1, &st->n2);
-    v = cp_v3_norm(&j.cu);
+    v = cp_v3_norm(&j->cu);
     vv = v * v;
-    a = j.ru / v;
-    st->r = j.r;
+    a = j->ru / v;
+    st->r = j->r;
     st->a = a;
     st->b = cp_sqrt((CP_R(1.0) - a) * (CP_R(1.0) + a));
-    st->as = (j.ruu - a * cp_v3_dot(&j.cu, &j.cuu) / v) / vv;
-    st->k1 = cp_v3_dot(&j.cuu, &st->n1) / vv;
-    st->k2 = cp_v3_dot(&j.cuu, &st->n2) / vv;
+    st->as = (j->ruu - a * cp_v3_dot(&j->cu, &j->cuu) / v) / vv;
+    st->k1 = cp_v3_dot(&j->cuu, &st->n1) / vv;
+    st->k2 = cp_v3_dot(&j->cuu, &st->n2) / vv;
     st->m[0] = s->m[0];
     st->m[1] = s->m[1];
     st->m[2] = s->m[2];
     st->m[3] = s->m[3];
+    sp_scale(&st->at, -a, &st->t);
+    sp_scale(&st->bn1, st->b, &st->n1);
+    sp_scale(&st->bn2, st->b, &st->n2);
+}
+
+/* fill st from the march; CP_ERR_NUMERIC if a non-finite value appeared */
+static int sp_filled(const struct spine *s, struct spine_state *st)
+{
+    sp_fill(s, st);
+    if (!cp_finite(st->m[0] + st->m[1] + st->m[2] + st->m[3]) ||
+        !cp_finite(st->n1.x + st->n1.y + st->n1.z)) {
+        return CP_ERR_NUMERIC;
+    }
+    return CP_OK;
 }
 
 int spine_node(struct spine *s, uint16_t i, struct spine_state *st)
@@ -464,19 +524,36 @@ int spine_node(struct spine *s, uint16_t i, struct spine_state *st)
     if (s == NULL || st == NULL || i > s->nsteps) {
         return CP_ERR_RANGE;
     }
-    if (i < s->node) {
+    if (s->back || i < s->node) {
         sp_restart(s);
     }
     n = (uint32_t)i - s->node;
     for (k = 0; k < n; k++) {
         sp_step(s);
     }
-    sp_fill(s, st);
-    if (!cp_finite(st->m[0] + st->m[1] + st->m[2] + st->m[3]) ||
-        !cp_finite(st->n1.x + st->n1.y + st->n1.z)) {
-        return CP_ERR_NUMERIC;
+    return sp_filled(s, st);
+}
+
+int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st)
+{
+    uint32_t k, n;
+    if (s == NULL || st == NULL || i > s->nsteps) {
+        return CP_ERR_RANGE;
     }
-    return CP_OK;
+    if (s->back && i > s->node) {
+        sp_restart(s);
+    }
+    if (!s->back) {
+        n = (uint32_t)s->nsteps - s->node; /* the forward march on to node N */
+        for (k = 0; k < n; k++) {
+            sp_step(s);
+        }
+    }
+    n = (uint32_t)s->node - i;
+    for (k = 0; k < n; k++) {
+        sp_step_back(s);
+    }
+    return sp_filled(s, st);
 }
 
 /* ---------------------------------------------------------------------- points */
@@ -502,12 +579,13 @@ void spine_angle(const struct spine_state *st, const struct spine_label *lab, cp
 static void sp_surface(const struct spine_state *st, cp_real ct, cp_real sn, cp_real off,
                        struct raster_pt *pt)
 {
-    struct cp_vec3 e, n;
     cp_real rr = st->r + off;
-    cp_v3_comb(&e, ct, &st->n1, sn, &st->n2);
-    cp_v3_comb(&n, -st->a, &st->t, st->b, &e);
-    pt->n = n;
-    cp_v3_comb(&pt->p, CP_R(1.0), &st->c, rr, &n);
+    pt->n.x = st->at.x + ct * st->bn1.x + sn * st->bn2.x;
+    pt->n.y = st->at.y + ct * st->bn1.y + sn * st->bn2.y;
+    pt->n.z = st->at.z + ct * st->bn1.z + sn * st->bn2.z;
+    pt->p.x = st->c.x + rr * pt->n.x;
+    pt->p.y = st->c.y + rr * pt->n.y;
+    pt->p.z = st->c.z + rr * pt->n.z;
     pt->t = st->u;
 }
 
@@ -539,3 +617,398 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
     cp_real g = st->as + st->b * (st->k1 * ct + st->k2 * sn);
     return st->b * st->b - (st->r + off) * g;
 }
+
+/* ---------------------------------------------------------------------- iterator */
+
+/* The label theta0 of label index l (0..nl). */
+static cp_real sp_lab(const struct spine_path *it, uint32_t l)
+{
+    if (it->nl == 0u) {
+        return it->u0;
+    }
+    return it->u0 + (it->u1 - it->u0) * ((cp_real)l / (cp_real)it->nl);
+}
+
+/* Point k as (march node, label index); line and index for raster_pt. The pass of a point
+ * (*back): the odd lines of LINES and their links are on the backward pass. */
+static void sp_where(const struct spine_path *it, uint32_t k, uint32_t *node, uint32_t *l,
+                     uint8_t *back, struct raster_at *at)
+{
+    uint32_t lk = (uint32_t)it->head.link + 1u;
+    raster_locate(k, it->head.steps, it->head.link, at);
+    if (it->head.mode == RASTER_LINES) {
+        *node = at->i * it->q;
+        *l = at->j * lk + at->a;
+        *back = (uint8_t)(at->j & 1u);
+    } else {
+        *node = (at->j * lk + at->a) * it->q;
+        *l = at->i;
+        *back = 0u;
+    }
+}
+
+/* The emitted point at (node, label l) on the forward or backward pass. */
+static int sp_emit(struct spine_path *it, uint32_t node, uint32_t l, uint8_t back,
+                   struct raster_pt *pt)
+{
+    struct spine_state st;
+    cp_real r = it->tool_r;
+    int err = back ? spine_node_back(&it->s, (uint16_t)node, &st)
+                   : spine_node(&it->s, (uint16_t)node, &st);
+    if (err != CP_OK) {
+        return err;
+    }
+    if (l != it->lab_l) { /* the label is a function of l alone: caching keeps seeks exact */
+        spine_label(sp_lab(it, l), &it->lab);
+        it->lab_l = l;
+    }
+    spine_point_label(&st, &it->lab, CP_R(0.0), pt);
+    cp_v3_comb(&pt->p, CP_R(1.0), &pt->p, -r, &pt->n);
+    if (it->output == RASTER_OUT_TIP) {
+        pt->p.z -= r;
+    }
+    return cp_finite(pt->p.x + pt->p.y + pt->p.z) ? CP_OK : CP_ERR_NUMERIC;
+}
+
+/* D > 0 at every node and label of the patch, on the surface and the tool-centre surface. */
+static CP_NOINLINE int sp_check_patch(struct spine_path *it)
+{
+    uint32_t i, l;
+    for (i = 0; i <= it->s.nsteps; i++) {
+        struct spine_state st;
+        int err = spine_node(&it->s, (uint16_t)i, &st);
+        if (err != CP_OK) {
+            return err;
+        }
+        for (l = 0; l <= it->nl; l++) {
+            struct spine_label lab;
+            cp_real ct, sn, d0, d1;
+            spine_label(sp_lab(it, l), &lab);
+            spine_angle(&st, &lab, &ct, &sn);
+            d0 = spine_regularity(&st, ct, sn, CP_R(0.0));
+            d1 = spine_regularity(&st, ct, sn, -it->tool_r);
+            if (!cp_finite(d0 + d1)) {
+                return CP_ERR_NUMERIC;
+            }
+            if (!(d0 > CP_R(0.0)) || !(d1 > CP_R(0.0))) {
+                return CP_ERR_CUSP;
+            }
+        }
+    }
+    return CP_OK;
+}
+
+/* The on-circle sagitta of the link segments from line j to j + 1 with m segments at the
+ * end node of st (mm): the emitted points lie on a circle of radius rho = (R - r) b, and a
+ * chord whose ends differ by d in (cos theta, sin theta) has the sagitta
+ * rho (1 - sqrt(1 - d^2/4)). */
+static cp_real sp_link_sag(const struct spine_path *it, const struct spine_state *st, uint32_t j,
+                           uint32_t m, cp_real dl)
+{
+    cp_real rho = (st->r - it->tool_r) * st->b, c0, s0, worst = CP_R(0.0);
+    struct spine_label lab;
+    uint32_t a;
+    spine_label(it->u0 + (cp_real)j * dl, &lab);
+    spine_angle(st, &lab, &c0, &s0);
+    for (a = 1u; a <= m; a++) {
+        cp_real c1, s1, d2, sg;
+        spine_label(it->u0 + ((cp_real)j + (cp_real)a / (cp_real)m) * dl, &lab);
+        spine_angle(st, &lab, &c1, &s1);
+        d2 = (c1 - c0) * (c1 - c0) + (s1 - s0) * (s1 - s0);
+        d2 = CP_R(1.0) - CP_R(0.25) * d2;
+        sg = rho * (CP_R(1.0) - cp_sqrt(d2 > CP_R(0.0) ? d2 : CP_R(0.0)));
+        worst = sg > worst ? sg : worst;
+        c0 = c1;
+        s0 = s1;
+    }
+    return worst;
+}
+
+/* LINES with RASTER_LINK_AUTO: the least link + 1 = m (from the m = 1 estimate m ~
+ * sqrt(sag / tol), then by ones) whose on-circle sagitta is <= tol on every link; CP_ERR_TOL
+ * above CP_MAX_LINK + 1. The link of line j runs on the circle at u = 1 (even j) or 0. */
+static CP_NOINLINE int sp_link_fit(struct spine_path *it, cp_real tol, uint32_t *link)
+{
+    struct spine_state st[2];
+    cp_real dl = (it->u1 - it->u0) / (cp_real)(it->head.n - 1u), s1 = CP_R(0.0), e;
+    uint32_t j, m;
+    int err = spine_node(&it->s, 0u, &st[1]);
+    if (err == CP_OK) {
+        err = spine_node(&it->s, it->s.nsteps, &st[0]);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    for (j = 0; j + 1u < it->head.n; j++) {
+        e = sp_link_sag(it, &st[j & 1u], j, 1u, dl);
+        s1 = e > s1 ? e : s1;
+    }
+    e = cp_sqrt(s1 / tol);
+    m = e < CP_R(1.0) ? 1u : e > CP_R(70.0) ? 70u : (uint32_t)e;
+    for (; m <= (uint32_t)CP_MAX_LINK + 1u; m++) {
+        cp_real w = CP_R(0.0);
+        for (j = 0; j + 1u < it->head.n && w <= tol; j++) {
+            e = sp_link_sag(it, &st[j & 1u], j, m, dl);
+            w = e > w ? e : w;
+        }
+        if (w <= tol) {
+            *link = m - 1u;
+            return CP_OK;
+        }
+    }
+    return CP_ERR_TOL;
+}
+
+/* The march for `steps` points per line (LINES) or circle (CIRCLES) and `link`: N = q span,
+ * spine_init at that N, the tool against its least R. Sets head.steps and q. */
+static int sp_setup(struct spine_path *it, const struct spine_cfg *cfg, uint32_t steps,
+                    uint32_t link)
+{
+    uint32_t span, q;
+    int err;
+    span = it->head.mode == RASTER_LINES
+               ? steps
+               : (it->head.n > 1u ? (uint32_t)(it->head.n - 1u) : 1u) * (link + 1u);
+    if (span > SPINE_NSTEPS_MAX) {
+        return CP_ERR_TOO_MANY;
+    }
+    q = (SPINE_PATH_NMIN + span - 1u) / span;
+    q = q * span > SPINE_NSTEPS_MAX ? SPINE_NSTEPS_MAX / span : q; /* >= 1 */
+    if (it->head.mode == RASTER_CIRCLES) { /* even: the link segments' midpoints are nodes */
+        q = (q + 1u) & ~1u;
+        q = q * span > SPINE_NSTEPS_MAX ? q - 2u : q;
+        if (q < 2u) {
+            return CP_ERR_TOO_MANY;
+        }
+    }
+    err = spine_init(&it->s, cfg, (uint16_t)(q * span));
+    if (err != CP_OK) {
+        return err;
+    }
+    if (!(it->tool_r < it->s.rmin)) {
+        return CP_ERR_TOOL;
+    }
+    it->head.steps = steps;
+    it->q = (uint16_t)q;
+    return CP_OK;
+}
+
+/* |a - 2 b + c| / 8: the sagitta of the chords of a smooth curve through three consecutive
+ * evenly spaced points (h^2 kappa / 8 to leading order). */
+static cp_real sp_sag3(const struct cp_vec3 *a, const struct cp_vec3 *b, const struct cp_vec3 *c)
+{
+    struct cp_vec3 d;
+    d.x = a->x - CP_R(2.0) * b->x + c->x;
+    d.y = a->y - CP_R(2.0) * b->y + c->y;
+    d.z = a->z - CP_R(2.0) * b->z + c->z;
+    return CP_R(0.125) * cp_sqrt(cp_v3_dot(&d, &d));
+}
+
+/* The step sagitta of the raster (head.steps, q, the march at its N): the largest second
+ * difference / 8 along every line (LINES: each line marched from u = 0, n N march steps)
+ * or circle (CIRCLES: one forward march), on the emitted ball-centre (or surface) points. */
+static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
+{
+    uint32_t j, i, steps = it->head.steps, nodes;
+    cp_real dv = it->u1 - it->u0;
+    *sag = CP_R(0.0);
+    for (j = 0; j < it->head.n; j++) {
+        struct raster_pt p[3];
+        struct spine_state st;
+        memset(p, 0, sizeof p); /* p[0], p[1] are read only from i = 2 on */
+        cp_real fj = it->head.n > 1u ? (cp_real)j / (cp_real)(it->head.n - 1u) : CP_R(0.0);
+        nodes = it->head.mode == RASTER_LINES ? 0u : (uint32_t)(fj * (cp_real)it->s.nsteps + CP_R(0.5));
+        for (i = 0; i <= steps; i++) {
+            cp_real th;
+            int err;
+            if (it->head.mode == RASTER_LINES) {
+                nodes = i * it->q;
+                th = it->u0 + dv * fj;
+            } else {
+                th = it->u0 + dv * ((cp_real)i / (cp_real)steps);
+            }
+            err = (it->head.mode == RASTER_LINES || i == 0u) ? spine_node(&it->s, (uint16_t)nodes, &st)
+                                                             : CP_OK;
+            if (err != CP_OK) {
+                return err;
+            }
+            p[0] = p[1];
+            p[1] = p[2];
+            spine_point(&st, th, -it->tool_r, &p[2]);
+            if (i >= 2u) {
+                cp_real e = sp_sag3(&p[0].p, &p[1].p, &p[2].p);
+                if (!cp_finite(e)) {
+                    return CP_ERR_NUMERIC;
+                }
+                *sag = e > *sag ? e : *sag;
+            }
+        }
+    }
+    return CP_OK;
+}
+
+/* CIRCLES: the link sagitta, |P(mid) - (P(a) + P(b))/2| of every link segment (nodes a q,
+ * a q + q/2, (a + 1) q) on the lines theta0 = u0 and u1 (where the circles stop), one
+ * forward march each. */
+static CP_NOINLINE int sp_walk_links(struct spine_path *it, cp_real *sag)
+{
+    uint32_t e, a, segs = it->s.nsteps / it->q, h = it->q / 2u;
+    *sag = CP_R(0.0);
+    for (e = 0; e < 2u; e++) {
+        cp_real th = e ? it->u1 : it->u0;
+        struct raster_pt pa, pm, pb;
+        struct spine_state st;
+        int err = spine_node(&it->s, 0u, &st);
+        if (err != CP_OK) {
+            return err;
+        }
+        spine_point(&st, th, -it->tool_r, &pa);
+        for (a = 0; a < segs; a++) {
+            struct cp_vec3 d;
+            cp_real x;
+            err = spine_node(&it->s, (uint16_t)(a * it->q + h), &st);
+            if (err == CP_OK) {
+                spine_point(&st, th, -it->tool_r, &pm);
+                err = spine_node(&it->s, (uint16_t)((a + 1u) * it->q), &st);
+            }
+            if (err != CP_OK) {
+                return err;
+            }
+            spine_point(&st, th, -it->tool_r, &pb);
+            d.x = pm.p.x - CP_R(0.5) * (pa.p.x + pb.p.x);
+            d.y = pm.p.y - CP_R(0.5) * (pa.p.y + pb.p.y);
+            d.z = pm.p.z - CP_R(0.5) * (pa.p.z + pb.p.z);
+            x = cp_sqrt(cp_v3_dot(&d, &d));
+            if (!cp_finite(x)) {
+                return CP_ERR_NUMERIC;
+            }
+            *sag = x > *sag ? x : *sag;
+            pa = pb;
+        }
+    }
+    return CP_OK;
+}
+
+/* STEPS from the tolerance (raster.h raster_fit): walk, measure, re-estimate. */
+static const struct raster_rule sp_rule = {.aim = CP_R(0.8), .accept = CP_R(0.9), .start = 16u,
+                                           .pilot = 1u, .grow_shift = RASTER_GROW_BY_ONE,
+                                           .clamp = 1u};
+
+/* Derive steps (steps == 0) and, for CIRCLES, link (RASTER_LINK_AUTO, n > 1) by raster_fit;
+ * *link: the link (given or derived; LINES: 0 here, derived later by sp_link_fit). */
+static CP_NOINLINE int sp_fit(struct spine_path *it, const struct spine_cfg *cfg,
+                              const struct raster_cfg *rc, uint32_t *link)
+{
+    struct raster_cfg one = *rc;
+    struct raster_fit fit;
+    cp_real sag[2];
+    int round, err = RASTER_FIT_MORE;
+    if (rc->mode == RASTER_LINES) {
+        one.link = 0u; /* the links are derived on their own (sp_link_fit) */
+    }
+    raster_fit_begin(&fit, &one, &sp_rule);
+    for (round = 0; round <= RASTER_FIT_ROUNDS && err == RASTER_FIT_MORE; round++) {
+        err = sp_setup(it, cfg, fit.m[0], fit.m[1] - 1u);
+        if (err == CP_ERR_TOO_MANY) {
+            err = CP_ERR_TOL; /* more nodes than the march can take */
+        }
+        if (err == CP_OK) {
+            err = sp_walk_steps(it, &sag[0]);
+        }
+        sag[1] = CP_R(0.0);
+        if (err == CP_OK && rc->mode == RASTER_CIRCLES && it->head.n > 1u) {
+            err = sp_walk_links(it, &sag[1]);
+        }
+        if (err == CP_OK) {
+            err = raster_fit_update(&fit, sag);
+        }
+    }
+    *link = fit.m[1] - 1u;
+    return err; /* CP_OK: the last sp_setup was at the verified counts fit.m[] */
+}
+
+int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
+                    const struct raster_cfg *rc)
+{
+    uint32_t link;
+    int err;
+    if (it == NULL) {
+        return CP_ERR_INVAL;
+    }
+    it->head.count = 0;
+    err = spine_init(&it->s, cfg, 1u); /* the geometry's checks first (nodes set below) */
+    if (err == CP_OK) {
+        err = raster_check(rc, CP_PI);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    if (rc->labels != RASTER_LABEL_ANGLE || rc->span != RASTER_SPAN_LINES) {
+        return CP_ERR_INVAL;
+    }
+    it->head.mode = rc->mode;
+    it->head.n = rc->n;
+    it->output = rc->output;
+    it->tool_r = rc->tool_r;
+    it->u0 = rc->u0;
+    it->u1 = rc->u1;
+    link = rc->link == RASTER_LINK_AUTO ? 0u : rc->link; /* LINES AUTO: derived below */
+    if (rc->steps == 0u || (rc->mode == RASTER_CIRCLES && rc->link == RASTER_LINK_AUTO)) {
+        err = sp_fit(it, cfg, rc, &link);
+    } else {
+        err = sp_setup(it, cfg, rc->steps, link);
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    if (rc->mode == RASTER_LINES && rc->link == RASTER_LINK_AUTO && rc->n > 1u) {
+        err = sp_link_fit(it, rc->tol > CP_R(0.0) ? rc->tol : CP_R(1.0e-3), &link);
+        if (err != CP_OK) {
+            return err;
+        }
+    }
+    it->head.link = (uint16_t)link;
+    it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * (link + 1u)
+                                                 : it->head.steps);
+    err = sp_check_patch(it);
+    if (err != CP_OK) {
+        return err;
+    }
+    it->head.count = raster_count(it->head.n, it->head.steps, it->head.link);
+    it->head.k = 0u;
+    it->lab_l = UINT32_MAX;
+    return CP_OK;
+}
+
+uint32_t spine_path_count(const struct spine_path *it)
+{
+    return it->head.count;
+}
+
+int spine_path_seek(struct spine_path *it, uint32_t k)
+{
+    return raster_seek(&it->head, k);
+}
+
+int spine_path_next(struct spine_path *it, struct raster_pt *pt)
+{
+    struct raster_at at;
+    uint32_t node, l;
+    uint8_t back;
+    int err;
+    if (it->head.k >= it->head.count) {
+        return CP_ERR_DONE;
+    }
+    sp_where(it, it->head.k, &node, &l, &back, &at);
+    err = sp_emit(it, node, l, back, pt);
+    pt->line = (int16_t)at.line;
+    pt->index = (uint16_t)at.index;
+    if (err == CP_OK) {
+        it->head.k++;
+    }
+    return err;
+}
+
+#if !CP_REAL_DOUBLE
+CP_STATIC_ASSERT(sizeof(struct spine_path) <= 320u, spine_path_ctx_320);
+#endif

@@ -33,7 +33,10 @@
  *
  * Memory: struct spine is the whole context (<= 320 B in the float build, checked by a static
  * assert); no allocation, no table: the march keeps only the current node. spine_node(i)
- * goes forward from the current node, or restarts from u = 0 when i is behind it.
+ * goes forward from the current node, or restarts from u = 0 when i is behind it;
+ * spine_node_back(i) is the backward pass (forward to u = 1 once, then back) that the
+ * backward lines of a zigzag use. Each pass is one fixed sequence of steps, so a node's
+ * state depends only on (pass, node): seeks and resumes are bit for bit.
  */
 #ifndef SPINE_H
 #define SPINE_H
@@ -77,10 +80,19 @@ enum spine_law {
 struct spine_cfg {
     uint8_t kind;  /* enum spine_kind */
     uint8_t law;   /* enum spine_law */
+    uint8_t set;   /* protocol bookkeeping (job_spine.c), ignored by spine_init */
     cp_real sp[12]; /* spine parameters, mm and radians, as listed in enum spine_kind (unused
                        entries ignored) */
     cp_real rp[4];  /* radius-law parameters, mm (k dimensionless), as in enum spine_law */
     cp_real ref[3]; /* start vector of N1 (any length); all zero: the principal normal */
+    cp_real dir[3]; /* protocol bookkeeping (job_spine.c SPINEDIR: the ARC/HELIX start
+                       direction, copied into sp[] at RUN), ignored by spine_init */
+};
+
+/* The jet of the spine and the law at one u (spine_jet). */
+struct spine_jet {
+    struct cp_vec3 c, cu, cuu;
+    cp_real r, ru, ruu;
 };
 
 /* The context: the validated configuration and the march's current node. Read-only for the
@@ -89,6 +101,7 @@ struct spine {
     uint8_t kind, law;
     uint16_t nsteps;    /* N */
     uint16_t node;      /* the march's current node i (0..N) */
+    uint8_t back;       /* 1: node reached by a backward pass (spine_node_back), 0: forward */
     cp_real sp[12];     /* copy of the spine parameters */
     cp_real rp[4];      /* copy of the law parameters */
     struct cp_vec3 e1;  /* ARC, HELIX: unit in-plane start direction */
@@ -103,6 +116,7 @@ struct spine {
     struct cp_vec3 r;   /* N1 carried by double reflection (renormalized at output only) */
     cp_real m[4];       /* transport M = [[m0, m1], [m2, m3]] */
     cp_real a0[2];      /* A~(u_i) = [[-a0[0], a0[1]], [a0[1], a0[0]]] */
+    struct spine_jet j; /* the jet at u_i (the step's last evaluation, reused by the fill) */
 };
 
 /* Everything a point at node u_i needs (spine_node fills it; shared by all lines there). */
@@ -118,6 +132,10 @@ struct spine_state {
     cp_real as;          /* da/ds, 1/mm */
     cp_real k1, k2;      /* T' = k1 N1 + k2 N2 (per mm of arc) */
     cp_real m[4];        /* transport M(u_i), det = 1 up to rounding */
+    /* shared by every point at this node: n = at + cos(theta) bn1 + sin(theta) bn2 */
+    struct cp_vec3 at;   /* -a T */
+    struct cp_vec3 bn1;  /* b N1 */
+    struct cp_vec3 bn2;  /* b N2 */
 };
 
 /* The homogeneous label of a family-2 line: (sin(theta0/2), cos(theta0/2)). */
@@ -151,10 +169,6 @@ int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps) CP
 
 /* The jet of the spine and the law at u (meaningful for u in [0, 1]): c, c_u, c_uu (mm per
  * unit u), R, R_u, R_uu. One cp_sincos for ARC and HELIX, one for the COS law. Cannot fail. */
-struct spine_jet {
-    struct cp_vec3 c, cu, cuu;
-    cp_real r, ru, ruu;
-};
 void spine_jet(const struct spine *s, cp_real u, struct spine_jet *j);
 
 /* Bring the march to node i (0 <= i <= N) and fill *st. Forward from the current node (cost
@@ -163,6 +177,14 @@ void spine_jet(const struct spine *s, cp_real u, struct spine_jet *j);
  * CP_ERR_NUMERIC if a non-finite value appeared (cannot happen after a successful init with
  * finite arithmetic; kept as the iterator's guard). Returns CP_OK. */
 int spine_node(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
+
+/* The backward pass: bring the march to node i as reached from node N by backward steps
+ * (sp_step inverted: the same truncation error as the forward march in exact arithmetic,
+ * only the rounding differs). From a forward state the march first goes on to N (cost
+ * N - node steps, once per pass), then back (node - i steps); a backward state ahead of i
+ * steps back, one behind i restarts (i = N is the forward state at N). Errors as
+ * spine_node. */
+int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
 
 /* The label of the line theta0 (radians, any finite value; |theta0| <= 1e5 in the float
  * build): one cp_sincos(theta0 / 2). Lines theta0 and theta0 + 2 pi are the same line. */
@@ -191,5 +213,76 @@ void spine_angle(const struct spine_state *st, const struct spine_label *lab, cp
  * by off, at angle (ct, sn) (MATH-spine 3.3, 8): the Jacobian is (R + off)|D|; D = 0 on a
  * cuspidal edge. A regular patch keeps D > 0 (the iterator's check, CP_ERR_CUSP). */
 cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, cp_real off);
+
+/* ---- the toolpath iterator (path.h; raster semantics of raster.h) ----
+ *
+ * A patch of the surface between the family-2 lines theta0 = u0 and u1 (start angles on the
+ * first circle, radians, |u| <= pi; u0 == u1 with n = 1), u over [0, 1]:
+ *   LINES    n family-2 lines theta0_j = u0 + j (u1 - u0)/(n - 1), steps + 1 points each at
+ *            u = i / steps, zigzag (odd lines from u = 1 back to 0); the link from line j to
+ *            j + 1 runs along the characteristic circle at the end u, through the lines of
+ *            the labels between theta0_j and theta0_j+1 (label fraction a / (link + 1)).
+ *   CIRCLES  n characteristic circles at u_j = j / (n - 1) (u = 0 for n = 1), each steps + 1
+ *            points: the family-2 lines theta0 = u0 + i (u1 - u0)/steps at u_j (the same
+ *            patch as LINES: raster span LINES), zigzag in theta0; the link from circle j to
+ *            j + 1 runs along the line where circle j stopped, at u = (j + a/(link + 1))/(n-1).
+ * Every point is (node, label): the march of struct spine to a node, then one cp_sincos (the
+ * label) and spine_point_label. The march nodes: N = q steps (LINES) or q (n - 1)(link + 1)
+ * (CIRCLES, q rounded up to even), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
+ * MATH-spine 9.3: 32 nodes keep the helix tube, C = 37.2, at 3.5e-5 mm before float
+ * rounding), N <= SPINE_NSTEPS_MAX (else CP_ERR_TOO_MANY).
+ * Cost: q march steps per point (each 2 jets + 2 double reflections + 1 Magnus step); the
+ * odd (backward) lines of LINES and their links run spine_node_back: one backward step per
+ * node, the forward march on to u = 1 done by the line before. A seek costs at most one
+ * restart plus the march to the point's node (2N steps for a point on a backward line).
+ * Output: SURFACE the surface point m; CENTRE the ball-end centre m - r n (inside tool: the
+ * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
+ * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
+ * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0: the steps from tol
+ * by raster_fit (start 16, pilot, aim 0.8 tol, accept 0.9 tol) on the sagitta estimate
+ * |P(i-1) - 2 P(i) + P(i+1)| / 8 of the emitted points of every line (each marched from
+ * u = 0: n N march steps per walk) or circle, CP_ERR_TOL when N would exceed
+ * SPINE_NSTEPS_MAX (measured against ref_spine: the worst chord 0.57-0.84 tol, test_spine
+ * spine_path_tol); link == RASTER_LINK_AUTO: LINES derive it
+ * from tol (1 um when tol = 0) by the exact on-circle sagitta of the link chords (the least
+ * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES derive it with the steps in the
+ * same raster_fit walks from the exact midpoint sagitta of every link segment on the lines
+ * u0 and u1 (CIRCLES keep q even, >= 2, so those midpoints are march nodes: (n - 1)(link
+ * + 1) <= SPINE_NSTEPS_MAX / 2);
+ * N > SPINE_NSTEPS_MAX CP_ERR_TOO_MANY; tool_r >= the min R of spine_init's samples
+ * CP_ERR_TOOL; then one forward march over all N nodes: at every node and every label of the
+ * patch (the streamed lines and link labels; CIRCLES: the steps + 1 labels) the regularity D
+ * of the surface (off = 0) and of the tool-centre surface (off = -r) must be > 0, else
+ * CP_ERR_CUSP (a cusp strictly between nodes or labels is not seen); CP_ERR_NUMERIC for a
+ * non-finite march. */
+#define SPINE_PATH_NMIN 32u
+
+struct spine_path {
+    struct raster_head head; /* mode, n, steps, link, count, k (raster.h) */
+    uint8_t output;          /* enum raster_output */
+    uint16_t q;              /* march nodes per raster node step */
+    uint16_t nl;             /* label intervals: LINES (n - 1)(link + 1), CIRCLES steps */
+    cp_real tool_r;          /* mm */
+    cp_real u0, u1;          /* label range, radians */
+    uint32_t lab_l;          /* the label index of `lab` (UINT32_MAX: none yet) */
+    struct spine_label lab;  /* the last label made: one cp_sincos per line, not per point */
+    struct spine s;          /* the kernel and its march */
+};
+
+/* Validate and check the patch (see above). Returns CP_OK; then spine_path_next yields
+ * exactly spine_path_count() points. */
+CP_MUST_CHECK int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
+                                  const struct raster_cfg *raster);
+
+/* Total points of the path (0 until a successful init). */
+uint32_t spine_path_count(const struct spine_path *it);
+
+/* Next point: CP_OK, CP_ERR_DONE after the last (CP_ERR_NUMERIC: the march's guard; the
+ * position does not advance). pt->t = u, pt->line, pt->index as raster.h. */
+int spine_path_next(struct spine_path *it, struct raster_pt *pt);
+
+/* Restart at point k (0 <= k <= count; CP_ERR_RANGE otherwise): the next point is bit for
+ * bit the k-th of a full walk (each pass of the march is one fixed sequence of steps). */
+CP_MUST_CHECK int spine_path_seek(struct spine_path *it, uint32_t k);
 
 #endif /* SPINE_H */

@@ -28,6 +28,7 @@
 #include "gsr.h"
 #include "drc.h"
 #include "plane.h"
+#include "spine.h"
 
 /* PATH_IF(WITH, tokens): the tokens when WITH (models.def's column: the literal 0 or 1,
  * cp_config.h checks) is 1, nothing when it is 0. The rows of a model that is not
