@@ -408,65 +408,42 @@ static void sp_magnus(cp_real m[4], const cp_real a0[2], const cp_real ah[2], co
     m[3] += d3;
 }
 
-/* node i -> i + 1: two double reflections (to the half node and the node), one Magnus step */
-static void sp_step(struct spine *s)
+/* One march step from node i to i + dir (dir = +1 forward, -1 back): two double reflections
+ * (to the half node and the node), one Magnus step over [u_i, u_i + dir h].
+ * Backward (dir = -1) is the forward step run in reverse: double reflection is its own
+ * inverse in exact arithmetic (the reflection in x_{i-1} - x_i is the first one again; the
+ * second reflects in R1 v2, the image of the forward step's v2), and the Magnus step with
+ * the Simpson nodes reversed and -h is exactly -Omega (s1, s2 and the commutator term all
+ * change sign), whose exponential is the inverse of the forward step's. So a backward pass
+ * makes the same truncation error as the forward march, node by node; only the rounding
+ * differs (a few ulp per step, ~sqrt(K) eps over K steps: ~1e-6 relative in float at
+ * K = 2048). The jets' u are k / (2N) with integer k: 0 and 1 exactly at the ends. */
+static void sp_step(struct spine *s, int dir)
 {
     struct spine_jet j;
     struct cp_vec3 xh, th;
     cp_real ah[2], a1[2];
     cp_real n2 = (cp_real)(2u * s->nsteps), h = CP_R(1.0) / (cp_real)s->nsteps;
-    uint32_t k = 2u * s->node + 1u;
+    uint32_t k = dir > 0 ? 2u * s->node + 1u : 2u * s->node - 1u; /* the half node */
+    uint32_t k1 = dir > 0 ? k + 1u : k - 1u;                          /* the next node */
     spine_jet(s, (cp_real)k / n2, &j);
     xh = j.c;
     th = j.cu;
     (void)cp_v3_unit(&th);
     sp_reflect(&s->x, &s->t, &xh, &th, &s->r);
     sp_atilde(&j, &th, &s->r, ah);
-    spine_jet(s, (cp_real)(k + 1u) / n2, &j); /* (2N)/(2N) = 1 exactly at the last node */
+    spine_jet(s, (cp_real)k1 / n2, &j);
     s->x = j.c;
     s->t = j.cu;
     (void)cp_v3_unit(&s->t);
     sp_reflect(&xh, &th, &s->x, &s->t, &s->r);
     sp_atilde(&j, &s->t, &s->r, a1);
-    sp_magnus(s->m, s->a0, ah, a1, h);
+    sp_magnus(s->m, s->a0, ah, a1, dir > 0 ? h : -h);
     s->a0[0] = a1[0];
     s->a0[1] = a1[1];
     s->j = j;
-    s->node++;
-}
-
-/* node i -> i - 1: sp_step run backwards. Double reflection is its own inverse in exact
- * arithmetic (the reflection in x_{i-1} - x_i is the first one again; the second reflects
- * in R1 v2, the image of the forward step's v2), and the Magnus step with the Simpson nodes
- * reversed and -h is exactly -Omega (s1, s2 and the commutator term all change sign), whose
- * exponential is the inverse of the forward step's. So a backward pass makes the same
- * truncation error as the forward march, node by node; only the rounding differs (a few ulp
- * per step, ~sqrt(K) eps over K steps: ~1e-6 relative in float at K = 2048). */
-static void sp_step_back(struct spine *s)
-{
-    struct spine_jet j;
-    struct cp_vec3 xh, th;
-    cp_real ah[2], a1[2];
-    cp_real n2 = (cp_real)(2u * s->nsteps), h = CP_R(1.0) / (cp_real)s->nsteps;
-    uint32_t k = 2u * s->node - 1u;
-    spine_jet(s, (cp_real)k / n2, &j);
-    xh = j.c;
-    th = j.cu;
-    (void)cp_v3_unit(&th);
-    sp_reflect(&s->x, &s->t, &xh, &th, &s->r);
-    sp_atilde(&j, &th, &s->r, ah);
-    spine_jet(s, (cp_real)(k - 1u) / n2, &j); /* 0 / (2N) = 0 exactly at node 0 */
-    s->x = j.c;
-    s->t = j.cu;
-    (void)cp_v3_unit(&s->t);
-    sp_reflect(&xh, &th, &s->x, &s->t, &s->r);
-    sp_atilde(&j, &s->t, &s->r, a1);
-    sp_magnus(s->m, s->a0, ah, a1, -h);
-    s->a0[0] = a1[0];
-    s->a0[1] = a1[1];
-    s->j = j;
-    s->node--;
-    s->back = 1u;
+    s->node = (uint16_t)(k1 / 2u);
+    s->back = dir < 0 ? 1u : 0u;
 }
 
 /* o = k a */
@@ -529,7 +506,7 @@ int spine_node(struct spine *s, uint16_t i, struct spine_state *st)
     }
     n = (uint32_t)i - s->node;
     for (k = 0; k < n; k++) {
-        sp_step(s);
+        sp_step(s, 1);
     }
     return sp_filled(s, st);
 }
@@ -546,12 +523,12 @@ int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st)
     if (!s->back) {
         n = (uint32_t)s->nsteps - s->node; /* the forward march on to node N */
         for (k = 0; k < n; k++) {
-            sp_step(s);
+            sp_step(s, 1);
         }
     }
     n = (uint32_t)s->node - i;
     for (k = 0; k < n; k++) {
-        sp_step_back(s);
+        sp_step(s, -1);
     }
     return sp_filled(s, st);
 }
