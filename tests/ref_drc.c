@@ -22,6 +22,9 @@
 #define REF_T_BISECT 60
 #endif
 
+/* the zero of an end angle, relative (drc.h DRC_ANGLE_ZERO, 2^-18) */
+#define REF_DRC_ANGLE_ZERO 3.814697265625e-6
+
 typedef double v3[3];
 
 /* re + i im without the float-complex macro I (C99: a complex is an array of two) */
@@ -312,16 +315,28 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
     return REF_DRC_OK;
 }
 
+/* max |v_k| */
+static double max_abs3(const double v[3])
+{
+    return fmax(fmax(fabs(v[0]), fabs(v[1])), fabs(v[2]));
+}
+
 void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
                     const double TB[3], double M[3], double TM[3])
 {
-    double d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al;
+    double d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al, zero;
     const double *T2[2];
     double *g2[2];
     int k, s;
     vdiff(B, A, d);
     c = vlen(d);
     vunit(d);
+    /* MATH-seeds A.2: "one end angle zero -> linear model". The exact 0 is decided with the
+     * firmware's documented tolerance (drc.h DRC_ANGLE_ZERO: 2^-18 (1 + (|A| + |B|)/c), the
+     * float build's rounding level x 8), so that this reference takes the model the firmware
+     * takes; an angle at double rounding (1e-16) next to a finite one would otherwise take
+     * the exponential model with rho ~ 1e14 and put M 1e-2 mm off (issue 21). */
+    zero = REF_DRC_ANGLE_ZERO * (1.0 + (max_abs3(A) + max_abs3(B)) / c);
     T2[0] = TA;
     T2[1] = TB;
     g2[0] = gA;
@@ -333,7 +348,7 @@ void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
         }
         wl = vlen(w);
         for (k = 0; k < 3; k++) {
-            g2[s][k] = wl > 0.0 ? atan2(wl, p) * w[k] / wl : 0.0;
+            g2[s][k] = atan2(wl, p) > zero ? atan2(wl, p) * w[k] / wl : 0.0;
         }
     }
     {

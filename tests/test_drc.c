@@ -700,6 +700,13 @@ int test_drc_end_tangent_bound(void)
  * are below the containment slack). Linear-model segments (an inflection, or one end
  * angle on the chord) are S-curves by A.2 and are only counted (drc.h, drc_insert). */
 #define PROP_K 4
+
+/* max |v_k| (the coordinate scale of DRC_ANGLE_ZERO) */
+static double max_abs3(const struct cp_vec3 *v)
+{
+    return fmax(fmax(fabs((double)v->x), fabs((double)v->y)), fabs((double)v->z));
+}
+
 int test_drc_random_planar(void)
 {
     static struct drc_pt b[((uint32_t)(CP_MAX_DRC_POINTS - 1) << PROP_K) + 1u];
@@ -730,11 +737,15 @@ int test_drc_random_planar(void)
                                   dx * (double)a->t.x + dy * (double)a->t.y);
                 double tb = atan2(dx * (double)e->t.y - dy * (double)e->t.x,
                                   dx * (double)e->t.x + dy * (double)e->t.y);
+                double zero = (double)DRC_ANGLE_ZERO *
+                              (1.0 + (max_abs3(&a->p) + max_abs3(&e->p)) / sqrt(dx * dx + dy * dy));
                 tan_bad += !(fabs(ta) < 1.5707963267948966 && fabs(tb) < 1.5707963267948966);
                 if (k == PROP_K) {
                     continue;
                 }
-                if (ta * tb < 0.0 && fabs(tb) <= 40.0 * fabs(ta) && fabs(ta) <= 40.0 * fabs(tb)) {
+                /* convex as drc.c decides it: both end angles above the zero (DRC_ANGLE_ZERO) */
+                if (ta * tb < 0.0 && fabs(ta) > zero && fabs(tb) > zero &&
+                    fabs(tb) <= 40.0 * fabs(ta) && fabs(ta) <= 40.0 * fabs(tb)) {
                     convex++;
 #if CP_REAL_DOUBLE
                     tri_bad += !drc_in_triangle(a, e, &b[j * sd + sd / 2u].p);
@@ -869,5 +880,90 @@ int test_drc_job_ready(void)
     CHECK_EQ_INT(job_ready(&j), CP_ST_OK);
     CHECK_EQ_INT(drc_cmd(&j, "EDGE OFF"), CP_ST_OK);
     CHECK_EQ_INT(job_ready(&j), CP_ST_OK);
+    return 0;
+}
+
+/* The judge's verdict on correct streams (issue 21): random planar sets with an inflection
+ * (a cubic S through the middle), some with a collinear run (points on one line) and some
+ * on an exact circle, K = 1..5. The firmware and the reference take the same model on every
+ * segment (drc.h DRC_ANGLE_ZERO): the double build agrees with the reference to 1e-9 mm on
+ * every set (asserted). Before the shared zero both took the exponential model on a
+ * rounding-level angle next to a finite one, each on different segments (the reference on
+ * 1e-16, the firmware on -1.7e-16 x a finite one), and S-curve streams failed host_sim's
+ * judge by up to 7.8e-2 mm. The float build is measured against host_sim's limits (1 um,
+ * 0.01 deg) and NOT asserted: 3 of 1000 sets exceed them (up to 0.099 mm), all from the
+ * float G2 tangent solve (step 1: the tangent next to a given-up vertex 3 deg off the
+ * double one), where the judge's FAIL is right; issue 21 keeps that open. */
+int test_drc_judge_property(void)
+{
+    static struct drc_pt b[((uint32_t)(CP_MAX_DRC_POINTS - 1) << 5) + 1u];
+    static double P[CP_MAX_DRC_POINTS][3], R[((CP_MAX_DRC_POINTS - 1) << 5) + 1][3],
+        RT[((CP_MAX_DRC_POINTS - 1) << 5) + 1][3];
+    unsigned seed = 20261126u;
+    int want = DRC_HEAVY ? 1000 : 40, done = 0, tries = 0, bad = 0, runs[3] = {0, 0, 0};
+    double wp = 0.0, wt = 0.0, lim_p = CP_REAL_DOUBLE ? 1e-9 : 1e-3;
+    double lim_t = CP_REAL_DOUBLE ? 1e-7 : 0.01;
+    while (done < want && tries < 4 * want) {
+        int n = 5 + (int)(test_prng(&seed) % (CP_MAX_DRC_POINTS - 4)), kind = tries % 3, i, m, K;
+        double a3 = 0.002 + 1e-4 * (double)(test_prng(&seed) % 600u);
+        double a1 = 1e-3 * (double)(test_prng(&seed) % 1000u) - 0.5, x0 = 0.0, hx;
+        double off = 1e-2 * (double)(test_prng(&seed) % 5001u), dp = 0.0, dt = 0.0;
+        uint32_t cnt = 0, k;
+        int run0 = 1 + (int)(test_prng(&seed) % (unsigned)(n - 4));
+        tries++;
+        K = 1 + (int)(test_prng(&seed) % 5u);
+        hx = 1.5 + 1e-3 * (double)(test_prng(&seed) % 2000u);
+        x0 = 0.5 * hx * (n - 1) + 1e-3 * (double)(test_prng(&seed) % 2001u) - 1.0;
+        for (i = 0; i < n; i++) {
+            double x = hx * i + 0.3 * hx * (1e-3 * (double)(test_prng(&seed) % 1001u) - 0.5);
+            double y = a3 * (x - x0) * (x - x0) * (x - x0) + a1 * (x - x0);
+            if (kind == 1 && i > run0 && i <= run0 + 2) { /* a collinear run: points run0 - 1 */
+                double f = (double)(i - run0);            /* .. run0 + 2 on one line */
+                double sl = (P[run0][1] - P[run0 - 1][1]) / (P[run0][0] - P[run0 - 1][0]);
+                x = P[run0][0] + f * hx;
+                y = P[run0][1] + f * sl * hx;
+            }
+            if (kind == 2) { /* an exact circle of radius 3 n, a quarter turn */
+                double t = 1.5707963267948966 * i / (n - 1);
+                x = 3.0 * n * cos(t);
+                y = 3.0 * n * sin(t);
+            }
+            P[i][0] = x + off;
+            P[i][1] = y - off;
+            P[i][2] = 0.0;
+            b[i].p.x = (cp_real)P[i][0];
+            b[i].p.y = (cp_real)P[i][1];
+            b[i].p.z = CP_R(0.0);
+        }
+        if (drc_run(b, (uint32_t)n, (uint32_t)K, sizeof b / sizeof b[0], &cnt) != CP_OK) {
+            continue; /* a set drc_tangents refuses (turn >= 90 deg, coincident) */
+        }
+        CHECK_EQ_INT(ref_drc_run((const double(*)[3])P, n, K, R, RT, &m), 0);
+        CHECK_EQ_INT((int)cnt, m);
+        for (k = 0; k < cnt; k++) {
+            double ex = (double)b[k].p.x - R[k][0], ey = (double)b[k].p.y - R[k][1];
+            double dot = (double)b[k].t.x * RT[k][0] + (double)b[k].t.y * RT[k][1];
+            double crs = (double)b[k].t.x * RT[k][1] - (double)b[k].t.y * RT[k][0];
+            dp = fmax(dp, sqrt(ex * ex + ey * ey));
+            dt = fmax(dt, fabs(atan2(crs, dot)) * 57.29577951308232);
+        }
+        if (dp > lim_p || dt > lim_t) {
+            TEST_NOTE("drc judge property: set %d (kind %d, n %d, K %d): %.3g mm, %.3g deg\n", tries,
+                      kind, n, K, dp, dt);
+        }
+        bad += !(dp <= lim_p && dt <= lim_t); /* float: counted (see above) */
+        wp = fmax(wp, dp);
+        wt = fmax(wt, dt);
+        runs[kind]++;
+        done++;
+    }
+    TEST_NOTE("drc judge property: %d sets (S-curves %d, with a collinear run %d, circles %d; "
+              "K = 1..5): max |P - ref| %.3g mm, tangents %.3g deg (%s; limits %.0e mm, %.0e "
+              "deg)\n", done, runs[0], runs[1], runs[2], wp, wt, CP_REAL_NAME, lim_p, lim_t);
+    TEST_NOTE("drc judge property: %d of %d sets beyond the limits (%s)\n", bad, done, CP_REAL_NAME);
+    CHECK(done >= want);
+#if CP_REAL_DOUBLE
+    CHECK_EQ_INT(bad, 0);
+#endif
     return 0;
 }

@@ -370,6 +370,19 @@ static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, str
 
 /* ---- step 2, planar ---- */
 
+/* The zero tolerance of the end angles of the segment a-b with chord c (DRC_ANGLE_ZERO). */
+static cp_real max_abs(const struct cp_vec3 *v)
+{
+    cp_real m = cp_fabs(v->x);
+    m = cp_fabs(v->y) > m ? cp_fabs(v->y) : m;
+    return cp_fabs(v->z) > m ? cp_fabs(v->z) : m;
+}
+
+static cp_real angle_zero(const struct cp_vec3 *a, const struct cp_vec3 *b, cp_real c)
+{
+    return DRC_ANGLE_ZERO * (ONE + (max_abs(a) + max_abs(b)) / c);
+}
+
 /* Planar insertion (A.2 step 2, real z): signed angles about +z. */
 static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_pt *b,
                                       struct drc_pt *m)
@@ -381,6 +394,9 @@ static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_p
     dy /= c;
     tha = cp_atan2(dx * a->t.y - dy * a->t.x, dx * a->t.x + dy * a->t.y);
     thb = cp_atan2(dx * b->t.y - dy * b->t.x, dx * b->t.x + dy * b->t.y);
+    r = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
+    tha = cp_fabs(tha) <= r ? ZERO : tha;
+    thb = cp_fabs(thb) <= r ? ZERO : thb;
     /* inflection or a zero end angle: linear curvature */
     d1 = CP_R(0.25) * (tha - thb);
     gm = CP_R(-0.25) * (tha + thb);
@@ -623,21 +639,22 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
                                   struct drc_pt *m)
 {
     struct cp_vec3 d, ga, gb, e1, e2, v1, vm;
-    cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs;
+    cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs, zero;
     int i;
     cp_v3_sub(&b->p, &a->p, &d);
     c = cp_v3_norm(&d);
+    zero = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
     cp_v3_comb(&d, ONE / c, &d, ZERO, &d);
     td = cp_v3_dot(&a->t, &d);
     cp_v3_comb(&ga, ONE, &a->t, -td, &d);
     w = cp_v3_norm(&ga);
     ang = cp_atan2(w, td);
-    cp_v3_comb(&ga, w > ZERO ? ang / w : ZERO, &ga, ZERO, &ga);
+    cp_v3_comb(&ga, ang > zero ? ang / w : ZERO, &ga, ZERO, &ga);
     td = cp_v3_dot(&b->t, &d);
     cp_v3_comb(&gb, ONE, &b->t, -td, &d);
     w = cp_v3_norm(&gb);
     ang = cp_atan2(w, td);
-    cp_v3_comb(&gb, w > ZERO ? ang / w : ZERO, &gb, ZERO, &gb);
+    cp_v3_comb(&gb, ang > zero ? ang / w : ZERO, &gb, ZERO, &gb);
     {
         cp_real na = cp_v3_norm(&ga), nb = cp_v3_norm(&gb);
         struct cx gA, gB, rho;

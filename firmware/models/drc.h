@@ -87,6 +87,21 @@
 #define DRC_NEWTON 30   /* damped Newton steps of the 3D twisted model */
 #define DRC_Q_MAX CP_R(49.0)
 
+/* The exact 0 of an end angle (issue 21). Step 2 of A.2 is discontinuous there: both end
+ * angles of one turn take the exponential model, one angle 0 takes the linear one, and the
+ * two differ by O(the other angle x chord) as the zero one -> 0. Structural zeros are
+ * common: a tangent on its chord (collinear runs, G2 given up next to an inflection) and,
+ * once there is one, every child at M of a segment with a zero end (its angle there is
+ * -theta_A / 2 exactly). Computed, such an angle is noise: the chord direction
+ * d = (B - A)/c carries <= 2 sqrt(3) eps (|A| + |B|)/c from the points, the tangent
+ * <= 4 eps (its rotation and sincos), atan2 <= 4 eps; <= (8 + 4 (|A| + |B|)/c) eps in all,
+ * eps = 2^-24 in float. So an end angle |theta| <= DRC_ANGLE_ZERO (1 + (|A| + |B|)/c)
+ * (|.| the max-abs coordinate) IS zero: 64 eps, 8x that bound. The double build and the
+ * references (tests/ref_drc.c) use the same float-sized tolerance, so every build takes
+ * the same model on every segment; a genuine angle that small (3.8e-6 rad on a chord as
+ * long as the coordinates) takes the linear model. */
+#define DRC_ANGLE_ZERO CP_R(3.814697265625e-6) /* 2^-18 = 64 x 2^-24 */
+
 /* Points closer than this fraction of the bounding-box size D are coincident
  * (A.3: 1e-12 D in double; the float build cannot resolve less than ~1e-6 D). */
 #if CP_REAL_DOUBLE
