@@ -7,7 +7,8 @@
 2. wire: the paper job (LINES 8 -25 10, TOL 2: 4117 points) streamed by the library from
    fw_native --pty through tools/baud_relay.py at 115200 baud (10 bit times per byte,
    both directions), in FORMAT GCODE (the library answers every line "ok", as the
-   machine) and FORMAT FRAMES (ACK per read). Utilization = bytes received x 10 / 115200
+   machine; also with CHECKSUM ON, each line's checksum verified) and FORMAT FRAMES (a
+   cumulative ACK per read). Utilization = bytes received x 10 / 115200
    divided by the time from RUN sent to the final "ok" (host_sim's --baud definition).
 
 Usage: bench_py.py [BUILD]   (default build). Prints one "bench-py:" row per figure.
@@ -99,13 +100,15 @@ def bench_wire(build: pathlib.Path) -> None:
         base = Job.from_file(str(REPO / "tests" / "jobs" / "paper_gcode.job"))
         bt = 10.0 / BAUD
         with Link.open(slow, timeout=5.0) as link:
-            for fmt in ("GCODE", "FRAMES"):
-                job = Job(base.commands).format(fmt)
+            for fmt in ("GCODE", "GCODE+CS", "FRAMES"):
+                job = Job(base.commands).format(fmt.split("+")[0])
+                if fmt == "GCODE+CS":
+                    job.checksum(True)  # N<i> ... *<cs> lines, verified by the library
                 link.send_job(job)
                 pts = list(link.run())
                 r = link.last_run
                 util = r.bytes_in * bt / r.seconds
-                print("bench-py: wire %-6s %6.2f %% at %d baud  (%d points, %d bytes in %.2f s; wire needs %.2f s;"
+                print("bench-py: wire %-8s %6.2f %% at %d baud  (%d points, %d bytes in %.2f s; wire needs %.2f s;"
                       " naks %d)" % (fmt, 100 * util, BAUD, len(pts), r.bytes_in, r.seconds, r.bytes_in * bt, r.naks))
     finally:
         if relay is not None:
