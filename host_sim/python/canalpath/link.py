@@ -22,6 +22,7 @@ ABORT_BYTE = b"\x18"
 LINE_LIMIT = 1024           # longest line accepted from the peer (bytes)
 REPLY_LINES_MAX = 64        # lines before a command's reply (a flood otherwise)
 PROGRESS_PERIOD = 0.25      # s between progress callbacks
+POLL_PERIOD = 1.0           # s of quiet in a G-code run before a '?' (alive?)
 _STATUS_RE = re.compile(r"^<(Idle|Run|Hold)(?:\|L:(\d+)/(\d+)\|P:(\d+)/(\d+))?>$")
 
 
@@ -135,7 +136,7 @@ class Link:
         self._rx = bytearray()
         self._format: str | None = None
         self._in_frames = False
-        self._seq_out = 0
+        self._held = False        # hold() sent: a held run is silent by design
         self.info: Info | None = None
         self.bytes_in = 0
         self.last_run = RunResult()
@@ -326,16 +327,20 @@ class Link:
                 return st
 
     def hold(self) -> None:
-        """Feed hold: ``!`` (a HOLD frame during a FRAMES run)."""
+        """Feed hold: ``!`` (a HOLD frame during a FRAMES run). While held, the run's
+        silence timeout is suspended (a held run waits for :meth:`go` or :meth:`abort`)."""
+        self._held = True
         self._write(fr.encode(0, fr.HOLD) if self._in_frames else b"!")
 
     def go(self) -> None:
         """Resume after a hold: ``~`` (a GO frame during a FRAMES run)."""
+        self._held = False
         self._write(fr.encode(0, fr.GO) if self._in_frames else b"~")
 
     def abort(self) -> None:
         """Abort the run: 0x18 (an ABORT frame, after 64 sync bytes, during a FRAMES run).
         The run then ends with :class:`~canalpath.errors.Aborted`."""
+        self._held = False
         self._write(fr.RESYNC + fr.encode(0, fr.ABORT) if self._in_frames else ABORT_BYTE)
 
     # ---- the run ---------------------------------------------------------------------------------
@@ -420,8 +425,15 @@ class Link:
         expect_n = 1          # CHECKSUM ON: the next line number wanted
         resend_wait = False
         rx = self._rx
+        progress_at = t0      # the last program line (chatter alone is no progress)
         while True:
-            deadline = time.monotonic() + self.run_timeout
+            now = time.monotonic()
+            if self._held:
+                progress_at = now
+            if now - progress_at > self.run_timeout:
+                raise self._fail_run(StreamError("no program line for %.1f s (%s, %d points)"
+                                                 % (self.run_timeout, cmd, res.points)))
+            deadline = now + self.run_timeout
             # every complete line now held, answered with one write
             replies: list[bytes] = []
             pts: list[Point] = []
@@ -440,15 +452,18 @@ class Link:
                     info = parse_run_header(s)
                     if info is not None:
                         res.info = info
+                        progress_at = time.monotonic()
                     continue
                 if s.startswith("<"):
                     st = parse_status(s)
                     if st is not None:
                         self.last_status = st
                         res.statuses.append(st)
+                        progress_at = time.monotonic()
                     continue
                 if not is_program_line(s):
                     continue  # chatter
+                progress_at = time.monotonic()
                 body = s
                 if s.startswith("N"):
                     sn = split_numbered(s)
@@ -493,9 +508,13 @@ class Link:
                 return
             if len(rx) > LINE_LIMIT:
                 raise self._fail_run(StreamError("a line longer than %d bytes in the run" % LINE_LIMIT))
-            if not self._fill(deadline):
-                raise self._fail_run(LinkTimeout("the run fell silent for %.1f s (%s, %d points)"
-                                                 % (self.run_timeout, cmd, res.points)))
+            if not self._fill(min(deadline, time.monotonic() + POLL_PERIOD)):
+                if time.monotonic() >= deadline and not self._held:
+                    raise self._fail_run(LinkTimeout("the run fell silent for %.1f s (%s, %d points)"
+                                                     % (self.run_timeout, cmd, res.points)))
+                # quiet: ask. A run on the machine link sends the host nothing but its
+                # reply; its <Run|...> reports show it alive (and give last_status)
+                self._write(b"?")
 
     def _run_frames(self, cmd: str, res: RunResult,
                     progress: Callable[[Progress], None] | None) -> Iterator[Point]:
@@ -512,6 +531,7 @@ class Link:
         pending = bytes(self._rx)
         self._rx.clear()
         self._in_frames = True
+        self._held = False
         write = self.transport.write
         tmo = self.timeout
         point_decode = fr.decode_point
@@ -523,6 +543,8 @@ class Link:
                     data = self.transport.read(0.05)
                     self.bytes_in += len(data)
                     now = time.monotonic()
+                    if self._held:
+                        progress_at = now
                     if not data:
                         if now - progress_at > self.run_timeout:
                             raise self._fail_run(LinkTimeout(
