@@ -11,8 +11,8 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 
 from . import frames as fr
-from .errors import (Aborted, CanalpathError, CommandError, JobValueError, LinkClosed, LinkError,
-                     LinkTimeout, NotCanalpath, RunError, SilentPeer, StreamError, parse_error_line)
+from .errors import (CanalpathError, CommandError, JobValueError, LinkError, LinkTimeout, NotCanalpath,
+                     RunError, SilentPeer, StreamError, parse_error_line)
 from .frames import FrameDecoder, Point, RunInfo
 from .gcode import is_program_line, parse_g1, parse_run_header, split_numbered
 from .job import LINE_MAX, Job
@@ -640,5 +640,4 @@ class Link:
         return list(self.run(**kw))  # type: ignore[arg-type]
 
 
-__all__ = ["Info", "Link", "Progress", "RunResult", "Status", "parse_status", "Aborted",
-           "LinkClosed"]
+__all__ = ["Info", "Link", "Progress", "RunResult", "Status", "parse_status"]

@@ -48,3 +48,11 @@ def test_cli_reports_errors_with_exit_1(fw, tmp_path: pathlib.Path):
                        cwd=PYROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
     assert r.returncode == 1
     assert "error:6 value out of range (LINES 200: |u| <= 180)" in r.stdout.decode()
+
+
+def test_cli_progress_bar(fw, tmp_path: pathlib.Path):
+    r = subprocess.run(["/usr/bin/python3", "-m", "canalpath", "run", str(JOBS / "boss_frames.job"), "--port", fw.link,
+                        "--progress"], cwd=PYROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)
+    assert r.returncode == 0, r.stderr.decode()
+    err = r.stderr.decode()
+    assert "1999/1999 points" in err and "points/s" in err and "ETA" in err and "[#" in err

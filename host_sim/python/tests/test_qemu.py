@@ -47,7 +47,7 @@ def qemu_link():
         os.close(slave)
 
 
-@pytest.mark.parametrize("job", ["paper_frames", "model_gsr_frames"])
+@pytest.mark.parametrize("job", ["paper_frames", "paper_gcode_cs", "model_gsr_frames"])
 def test_qemu_stream_equals_host_sims(qemu_link, job):
     assert qemu_link.info is not None and "GSR" in qemu_link.info.models
     pts = []
