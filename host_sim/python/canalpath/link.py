@@ -391,10 +391,29 @@ class Link:
         except CanalpathError as e:
             res.error = e
             raise
+        except GeneratorExit:
+            # the caller left the run unfinished: abort it, so the link is idle again
+            # (after a hang-up, close() first: then there is nothing left to tell)
+            self._abandon(fmt)
+            raise
         finally:
             res.seconds = time.monotonic() - t0
             res.bytes_in = self.bytes_in - b0 - len(self._rx)
             gen.close()
+
+    def _abandon(self, fmt: str) -> None:
+        """Abort a run the caller stopped iterating, and drop its tail (best effort)."""
+        try:
+            self._write(fr.RESYNC + fr.encode(0, fr.ABORT) if fmt == "FRAMES" else ABORT_BYTE)
+            deadline = time.monotonic() + self.timeout
+            while time.monotonic() < deadline:
+                data = self._drain_quiet(0.2, max(0.0, deadline - time.monotonic()))
+                if not data or b"error:20" in data or data.endswith(b"ok\n"):
+                    break
+            self._drain_quiet(0.05, self.timeout)
+            self._rx.clear()
+        except (LinkError, OSError):
+            pass
 
     def _progress(self, cb: Callable[[Progress], None] | None, res: RunResult, t0: float,
                   last: list[float], final: bool = False) -> None:

@@ -104,3 +104,18 @@ def test_hold_go_and_abort(fw, fmt):
         assert link.status().state == "Idle"
         # and the job runs again, whole
         assert len(list(link.run())) == 4117
+
+
+@pytest.mark.parametrize("fmt", ["GCODE", "FRAMES"])
+def test_leaving_a_run_early_aborts_it(fw, fmt):
+    """A caller that stops iterating: the run is aborted and the link is idle again."""
+    job = Job().curve_arc(0, 0, 3, 0, 360).radius_cos(5.5, 10.5, 2).lines(8, -25, 10).tol(2).feed(600).safe(50)
+    with Link.open(fw.link) as link:
+        link.send_job(job.format(fmt))
+        it = link.run()
+        first = [next(it) for _ in range(300)]
+        it.close()
+        assert link.status().state == "Idle"
+        assert link.dump()[-1].startswith("RADIUS")      # commands answered normally
+        again = list(link.run())
+        assert [p.k for p in first] == list(range(300)) and len(again) == 4117
