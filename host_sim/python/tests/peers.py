@@ -94,8 +94,25 @@ class FaultyTransport(FdTransport):
         self.injected = 0
 
     def arm(self) -> None:
-        """Count from the next byte read (the RUN's stream)."""
+        """Count from the next byte read (the RUN's stream), and the writes from the next."""
         self.count = 0
+        self.writes = 0
+
+    write_faults: dict[int, str] = {}
+    writes = -1 << 62
+
+    def write(self, data: bytes, timeout: float) -> None:
+        """Writes (ACK, NAK, ok) after arm(): index -> "drop" (the whole write) or "flip"
+        (bit 0 of its second byte)."""
+        f = self.write_faults.get(self.writes)
+        self.writes += 1
+        if f == "drop":
+            self.injected += 1
+            return
+        if f == "flip" and len(data) > 1:
+            self.injected += 1
+            data = data[:1] + bytes((data[1] ^ 1,)) + data[2:]
+        super().write(data, timeout)
 
     def read(self, timeout: float) -> bytes:
         data = super().read(timeout)

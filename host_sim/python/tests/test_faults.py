@@ -57,3 +57,19 @@ def test_corrupted_gcode_lines_are_resent(fw, faults):
         assert t.injected == len(faults)
         assert link.last_run.resends > 0
     assert points_csv(pts) == host_sim_csv("paper_gcode_cs")
+
+
+def test_corrupted_acks_are_recovered(fw):
+    """The other direction: ACKs dropped or garbled on their way to the firmware; the next
+    cumulative ACK or the firmware's resend after 250 ms covers them. (A G-code machine's
+    lost "ok" is not recoverable by design: the firmware counts characters and ends the
+    run with error:22 after 10 s.)"""
+    spec = Job.from_file(str(JOBS / "paper_frames.job"))
+    link, t = _faulty_link(fw.link, {})
+    t.write_faults = {3: "drop", 40: "flip", 41: "drop", 150: "flip"}
+    with link:
+        link.send_job(spec)
+        t.arm()
+        pts = list(link.run())
+        assert t.injected == len(t.write_faults), t.writes
+    assert points_csv(pts) == host_sim_csv("paper_frames")
