@@ -10,6 +10,7 @@
    machine; also with CHECKSUM ON, each line's checksum verified) and FORMAT FRAMES (a
    cumulative ACK per read). Utilization = bytes received x 10 / 115200
    divided by the time from RUN sent to the final "ok" (host_sim's --baud definition).
+   Also the same runs unpaced (the pty as fast as firmware and library go), points/s.
 
 Usage: bench_py.py [BUILD]   (default build). Prints one "bench-py:" row per figure.
 SPDX-License-Identifier: MIT
@@ -83,6 +84,13 @@ def bench_decode() -> None:
           % (best, N_FRAMES))
 
 
+def _timed(link: Link) -> float:
+    t0 = time.perf_counter()
+    n = sum(1 for _ in link.run())
+    assert n == 4117
+    return time.perf_counter() - t0
+
+
 def bench_wire(build: pathlib.Path) -> None:
     tmp = pathlib.Path(tempfile.mkdtemp(prefix="bench-py-"))
     link_path = str(tmp / "ttyCP")
@@ -93,6 +101,13 @@ def bench_wire(build: pathlib.Path) -> None:
         end = time.monotonic() + 10
         while not os.path.exists(link_path) and time.monotonic() < end:
             time.sleep(0.01)
+        base0 = Job.from_file(str(REPO / "tests" / "jobs" / "paper_gcode.job"))
+        with Link.open(link_path) as direct:   # no line model: the pty as fast as it goes
+            for fmt in ("GCODE", "FRAMES"):
+                direct.send_job(Job(base0.commands).format(fmt))
+                best = min(_timed(direct) for _ in range(3))
+                print("bench-py: unpaced %-6s %7.0f points/s  (fw_native + library over a pty, the paper, best of 3)"
+                      % (fmt, 4117 / best))
         relay = subprocess.Popen([sys.executable, str(REPO / "tools" / "baud_relay.py"), link_path, str(BAUD)],
                                  stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
         assert relay.stdout is not None
