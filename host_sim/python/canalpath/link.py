@@ -123,14 +123,19 @@ class Link:
     :class:`~canalpath.errors.NotCanalpath`, a silent one
     :class:`~canalpath.errors.SilentPeer`.
 
+    With ``abort_busy=False`` a run found in progress is left alone and
+    :class:`~canalpath.errors.LinkError` is raised instead (a G-code run on the machine
+    link goes on without the host).
+
     ``timeout`` bounds every reply (s); ``run_timeout`` the silence within a run (the
     firmware resends unacknowledged frames every 250 ms and answers a G-code machine's
     silence after 10 s, so the default 15 s is a hang guard).
     """
 
     def __init__(self, transport: Transport, *, timeout: float = 2.0, run_timeout: float = 15.0,
-                 connect: bool = True) -> None:
+                 connect: bool = True, abort_busy: bool = True) -> None:
         self.transport = transport
+        self.abort_busy = abort_busy
         self.timeout = timeout
         self.run_timeout = run_timeout
         self._rx = bytearray()
@@ -226,6 +231,7 @@ class Link:
                     heard += self._rx[-256:]
                 if fr.SYNC in self._rx and any(b < 0x20 and b not in (10, 13) for b in self._rx):
                     # binary with sync bytes: a FRAMES run left by a previous host
+                    self._busy("a FRAMES run")
                     self._write(fr.RESYNC + fr.encode(0, fr.ABORT))
                     self._rx.clear()
                     continue
@@ -234,6 +240,7 @@ class Link:
                     if line == "ok" or line == "<Idle>":
                         idle = True
                     elif line.startswith(("<Run|", "<Hold|", "[RUN:")) or is_program_line(line):
+                        self._busy("a G-code run (%s)" % line[:40])
                         self._write(ABORT_BYTE)  # a G-code run left by a previous host
                 if idle:
                     break
@@ -246,6 +253,10 @@ class Link:
         self._drain_quiet(0.05, self.timeout)  # duplicate answers of the probes
         self.info = self.hello()
         return self.info
+
+    def _busy(self, what: str) -> None:
+        if not self.abort_busy:
+            raise LinkError("the firmware is busy with %s; Link(..., abort_busy=True) aborts it" % what)
 
     def hello(self) -> Info:
         """``$I``: the firmware's version and compile-time limits."""

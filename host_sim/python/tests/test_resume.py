@@ -6,7 +6,7 @@ import pathlib
 import pytest
 from conftest import JOBS, Firmware, host_sim_csv, points_csv
 
-from canalpath import Job, Link
+from canalpath import Job, Link, LinkError
 
 
 def _partial(link: Link, n: int) -> list:
@@ -58,3 +58,15 @@ def test_hangup_then_resume_on_a_new_firmware(fw, tmp_path: pathlib.Path):
     finally:
         fw2.stop()
     assert points_csv(got + rest) == host_sim_csv("paper_frames")
+
+
+def test_a_busy_firmware_is_left_alone_when_asked(fw):
+    spec = Job.from_file(str(JOBS / "paper_frames.job"))
+    link = Link.open(fw.link)
+    link.send_job(spec)
+    _partial(link, 100)
+    with pytest.raises(LinkError) as ei:
+        Link.open(fw.link, abort_busy=False)
+    assert "FRAMES run" in str(ei.value)
+    with Link.open(fw.link) as again:            # the default takes over
+        assert again.status().state == "Idle"
