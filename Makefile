@@ -86,6 +86,7 @@ $(BUILD)/hostd/unit: $(HOSTD_FW_OBJ) $(patsubst tests/%.c,$(BUILD)/hostd/tests/%
 -include mk/stream.mk
 -include mk/fuzz.mk
 -include mk/hardening.mk
+-include mk/py.mk
 
 ## stream-diff: BASE=<git ref>: firmware replies and streams byte-identical to BASE's (tools/stream_diff.sh; word "stream-diff")
 .PHONY: stream-diff

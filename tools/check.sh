@@ -4,7 +4,7 @@
 # line). A step that exits non-zero without such a line counts as 1 failed.
 # SPDX-License-Identifier: MIT
 MAKE=${MAKE:-make}
-STEPS=${CHECK_STEPS:-"unit unit-double unit-asan fuzz-check guard-docs guard-readme guard-warn guard-fnlen guard-layers guard-alloc guard-double guard-stack guard-budget guard-images guard-selftest m4f-unit m4f-pty sim-native sim-qemu sim-robust sim-machine sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models sim-machines example-model sim-rs274 sim-pyserial soak-quick stack-soak sim-asan"}
+STEPS=${CHECK_STEPS:-"unit unit-double unit-asan fuzz-check guard-docs guard-readme guard-warn guard-fnlen guard-layers guard-alloc guard-double guard-stack guard-budget guard-images guard-selftest m4f-unit m4f-pty sim-native sim-qemu sim-robust sim-machine sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models sim-machines example-model sim-rs274 sim-pyserial py-test soak-quick stack-soak sim-asan"}
 LOG=${BUILD:-build}/check.log
 mkdir -p "$(dirname "$LOG")"
 : > "$LOG"
@@ -24,6 +24,8 @@ if [ -z "${CHECK_STEPS:-}" ]; then
     need "libFuzzer/ASan runtime" "test -f \"\$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a)\"" libclang-rt-14-dev
     need "rs274 (LinuxCNC interpreter)" "command -v rs274" linuxcnc-uspace
     need "pyserial for /usr/bin/python3" "/usr/bin/python3 -c 'import serial'" python3-serial
+    need "pytest for /usr/bin/python3" "/usr/bin/python3 -c 'import pytest'" python3-pytest
+    need "venv and pip for /usr/bin/python3" "/usr/bin/python3 -c 'import venv, ensurepip'" python3-venv
 fi
 for s in $STEPS; do
     echo "== $s"
