@@ -236,23 +236,31 @@ int test_spine_circles(void)
     return 0;
 }
 
+/* cfg from double parameters (ref NULL: all zero, the principal normal) */
+static void cfg_fill(struct spine_cfg *cfg, int kind, int law, const double sp[12],
+                     const double rp[4], const double ref[3])
+{
+    int i;
+    memset(cfg, 0, sizeof *cfg);
+    cfg->kind = (uint8_t)kind;
+    cfg->law = (uint8_t)law;
+    for (i = 0; i < 12; i++) {
+        cfg->sp[i] = (cp_real)sp[i];
+    }
+    for (i = 0; i < 4; i++) {
+        cfg->rp[i] = (cp_real)rp[i];
+    }
+    for (i = 0; i < 3; i++) {
+        cfg->ref[i] = ref != NULL ? (cp_real)ref[i] : CP_R(0.0);
+    }
+}
+
 static int init_with(int kind, int law, const double sp[12], const double rp[4],
                      const double ref[3], unsigned n)
 {
     struct spine_cfg cfg;
     struct spine s;
-    int i;
-    cfg.kind = (uint8_t)kind;
-    cfg.law = (uint8_t)law;
-    for (i = 0; i < 12; i++) {
-        cfg.sp[i] = (cp_real)sp[i];
-    }
-    for (i = 0; i < 4; i++) {
-        cfg.rp[i] = (cp_real)rp[i];
-    }
-    for (i = 0; i < 3; i++) {
-        cfg.ref[i] = ref != NULL ? (cp_real)ref[i] : CP_R(0.0);
-    }
+    cfg_fill(&cfg, kind, law, sp, rp, ref);
     return spine_init(&s, &cfg, (uint16_t)n);
 }
 
@@ -526,19 +534,8 @@ static int job_run(int kind, int law, const double sp[12], const double rp[4], c
     struct spine_cfg cfg;
     struct spine_path it;
     struct raster_cfg rc;
-    int i, err;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.kind = (uint8_t)kind;
-    cfg.law = (uint8_t)law;
-    for (i = 0; i < 12; i++) {
-        cfg.sp[i] = (cp_real)sp[i];
-    }
-    for (i = 0; i < 4; i++) {
-        cfg.rp[i] = (cp_real)rp[i];
-    }
-    for (i = 0; i < 3; i++) {
-        cfg.ref[i] = ref != NULL ? (cp_real)ref[i] : CP_R(0.0);
-    }
+    int err;
+    cfg_fill(&cfg, kind, law, sp, rp, ref);
     raster_of(&rc, mode, n, v0 * PI_D / 180.0, v1 * PI_D / 180.0, steps, RASTER_LINK_AUTO, output,
               tool);
     rc.tol = (cp_real)job_tol;
