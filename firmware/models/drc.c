@@ -388,15 +388,15 @@ static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_p
                                       struct drc_pt *m)
 {
     cp_real dx = b->p.x - a->p.x, dy = b->p.y - a->p.y, c = cp_sqrt(dx * dx + dy * dy);
-    cp_real tha, thb, d1, gm, e1, e2, eq, r;
+    cp_real tha, thb, d1, gm, e1, e2, eq, r, zero;
     struct cp_vec3 u;
     dx /= c;
     dy /= c;
     tha = cp_atan2(dx * a->t.y - dy * a->t.x, dx * a->t.x + dy * a->t.y);
     thb = cp_atan2(dx * b->t.y - dy * b->t.x, dx * b->t.x + dy * b->t.y);
-    r = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
-    tha = cp_fabs(tha) <= r ? ZERO : tha;
-    thb = cp_fabs(thb) <= r ? ZERO : thb;
+    zero = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
+    tha = cp_fabs(tha) <= zero ? ZERO : tha;
+    thb = cp_fabs(thb) <= zero ? ZERO : thb;
     /* inflection or a zero end angle: linear curvature */
     d1 = CP_R(0.25) * (tha - thb);
     gm = CP_R(-0.25) * (tha + thb);
