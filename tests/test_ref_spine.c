@@ -174,24 +174,10 @@ int test_ref_spine_helix_pipe(void)
         struct ref_spine_line l;
         ref_spine_line_start(&l, &rs, th0[j]);
         for (q = 1; q <= 8; q++) {
-            double u = q / 8.0 - 0.01, p = 4.0 * PI_D * u, ang = hh * p / w;
+            double u = q / 8.0 - 0.01, p, ang;
             double T[3], N[3], B[3], N1[3], N2[3], c[3], m[3], n[3], want[3], t[3], e1[3], e2[3];
             double pm[4][3], pn[4][3], dm[3], dn[3], n1c[3], thc;
             int i;
-            T[0] = -r * sin(p) / w;
-            T[1] = r * cos(p) / w;
-            T[2] = hh / w;
-            N[0] = -cos(p);
-            N[1] = -sin(p);
-            N[2] = 0.0;
-            cross3(T, N, B);
-            for (i = 0; i < 3; i++) {
-                N1[i] = cos(ang) * N[i] - sin(ang) * B[i];
-            }
-            cross3(T, N1, N2);
-            c[0] = r * cos(p);
-            c[1] = r * sin(p);
-            c[2] = hh * p;
             CHECK_EQ_INT(line_stencil(&l, u, 1e-3, pm, pn, n1c, &thc), 0);
             cd4(pm, 1e-3, dm);
             cd4(pn, 1e-3, dn);
@@ -202,8 +188,10 @@ int test_ref_spine_helix_pipe(void)
             ang = hh * p / w;
             T[0] = -r * sin(p) / w;
             T[1] = r * cos(p) / w;
+            T[2] = hh / w;
             N[0] = -cos(p);
             N[1] = -sin(p);
+            N[2] = 0.0;
             cross3(T, N, B);
             for (i = 0; i < 3; i++) {
                 N1[i] = cos(ang) * N[i] - sin(ang) * B[i];
