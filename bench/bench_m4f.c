@@ -682,6 +682,23 @@ static void call_spine_extra(void)
     bench_sink = (int32_t)(sp_pt.p.z * CP_R(1000.0));
 }
 
+static struct spine_jet sp_j;
+static void call_spine_jet(void)
+{
+    spine_jet(&sp_it.s, CP_R(0.37), &sp_j);
+    bench_sink = (int32_t)(sp_j.c.x);
+}
+static void setup_spine_bz0(void) { spine_setup(1, 0u); bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st); }
+static void call_spine_eval(void)
+{
+    bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st);
+}
+static void call_spine_emit(void)
+{
+    bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st);
+    spine_point_label(&sp_st, &sp_lab, CP_R(-1.0), &sp_pt);
+}
+static void setup_spine_hx0(void) { spine_setup(0, 0u); bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st); }
 /* spine_path_init of the Bezier blend, LINES 4, TOL 2 um (steps and link derived) */
 static void call_spine_init(void)
 {
@@ -734,6 +751,11 @@ static const struct bench_case cases[] = {
     {"spine_pt_helix_cos_back", setup_spine_helix_back, call_spine_next},
     {"spine_pt_bezier_cubic", setup_spine_bezier_fwd, call_spine_next},
     {"spine_point_extra_line", setup_spine_extra, call_spine_extra},
+    {"TMP_jet_bezier", setup_spine_bz0, call_spine_jet},
+    {"TMP_jet_helix", setup_spine_hx0, call_spine_jet},
+    {"TMP_eval_bezier", setup_spine_bz0, call_spine_eval},
+    {"TMP_eval_helix", setup_spine_hx0, call_spine_eval},
+    {"TMP_evalpt_helix", setup_spine_hx0, call_spine_emit},
     {"spine_init_bezier_tol2um", setup_spine_bezier_fwd, call_spine_init},
 };
 
