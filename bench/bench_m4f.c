@@ -614,8 +614,8 @@ static struct spine_label sp_lab;
 static struct spine_cfg sp_g;
 
 /* helix tube (axis z, r 15, pitch 10, 2 turns) with R = 1.5 cos(8 pi u) + 4 (COS law), or the
- * Bezier blend with a CUBIC radius (tests/test_spine.c shapes); LINES 4 x 257 points: q = 1
- * march step per point. `skip` points first: 100 lands on line 0 (forward), 400 on line 1
+ * Bezier blend with a CUBIC radius (tests/test_spine.c shapes); LINES 4 x 257 points: one
+ * march step per 256 / N points (N by step doubling). `skip` points first: 100 lands on line 0 (forward), 400 on line 1
  * (the backward pass). */
 static void spine_setup(int bezier, uint32_t skip)
 {
@@ -682,6 +682,37 @@ static void call_spine_extra(void)
     bench_sink = (int32_t)(sp_pt.p.z * CP_R(1000.0));
 }
 
+/* The parts of a point (MATH-spine 9.7): the full jet, and the point state at u = 101/256
+ * (between two march nodes) with the march already there: what a point costs without a
+ * march step (the streamed rows add the amortized step and the label and point). */
+static struct spine_jet sp_j;
+
+static void call_spine_jet(void)
+{
+    spine_jet(&sp_it.s, CP_R(0.37), &sp_j);
+    bench_sink = (int32_t)(sp_j.c.x);
+}
+
+static void setup_spine_eval(int bezier)
+{
+    spine_setup(bezier, 0u);
+    bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st);
+}
+
+static void setup_spine_eval_bezier(void)
+{
+    setup_spine_eval(1);
+}
+
+static void setup_spine_eval_helix(void)
+{
+    setup_spine_eval(0);
+}
+
+static void call_spine_eval(void)
+{
+    bench_sink = spine_eval(&sp_it.s, 101u, 256u, 0u, 0u, &sp_st);
+}
 /* spine_path_init of the Bezier blend, LINES 4, TOL 2 um (steps and link derived) */
 static void call_spine_init(void)
 {
@@ -734,6 +765,10 @@ static const struct bench_case cases[] = {
     {"spine_pt_helix_cos_back", setup_spine_helix_back, call_spine_next},
     {"spine_pt_bezier_cubic", setup_spine_bezier_fwd, call_spine_next},
     {"spine_point_extra_line", setup_spine_extra, call_spine_extra},
+    {"spine_jet_bezier_cubic", setup_spine_eval_bezier, call_spine_jet},
+    {"spine_jet_helix_cos", setup_spine_eval_helix, call_spine_jet},
+    {"spine_eval_bezier_cubic", setup_spine_eval_bezier, call_spine_eval},
+    {"spine_eval_helix_cos", setup_spine_eval_helix, call_spine_eval},
     {"spine_init_bezier_tol2um", setup_spine_bezier_fwd, call_spine_init},
 };
 

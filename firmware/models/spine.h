@@ -9,20 +9,27 @@
  *     a = dR/ds = R_u / |c_u|,  b = sqrt(1 - a^2),  (T, N1, N2) the RMF, N2 = T x N1.
  *
  * Family 1: the characteristic circles u = const (theta free). Family 2: the orthogonal
- * trajectories, labelled by theta0, their angle on the first circle (u = 0). Every family-2
- * line is the same linear map of its label (MATH-spine 5.2):
+ * trajectories, labelled by theta0, their angle on the first circle (u = 0) measured from
+ * the RMF vector N1(0). Every family-2 line is the same linear map of its label
+ * (MATH-spine 5.2, 9.7):
  *
- *     y = M(u) (sin(theta0/2), cos(theta0/2)),  cos theta = (y2^2 - y1^2)/|y|^2,
- *     sin theta = 2 y1 y2 / |y|^2,   M' = A~ M,  A~ = f [[-c_uu.N1, c_uu.N2], [c_uu.N2, c_uu.N1]],
- *     f = R_u / (2 |c_u| sqrt(|c_u|^2 - R_u^2))            (traceless: det M = 1).
+ *     y = M(u) (sin(theta0/2), cos(theta0/2)),   cos psi = (y2^2 - y1^2)/|y|^2,
+ *     sin psi = 2 y1 y2 / |y|^2,                  n = -a T + b (cos psi P + sin psi Q).
  *
- * Numerics (MATH-spine 9): a uniform grid in u, nodes u_i = i / N (i = 0..N, N = nsteps),
- * half nodes u_i + 1/(2N). The RMF by double reflection (Wang, Juttler, Zheng, Liu 2008) on
- * the 2N half steps; M by N steps of Magnus-4 on the Simpson nodes (u_i, u_i + h/2, u_i + h),
- * in increment form. Both are order 4; MATH-spine 9.3 gives the error constants (error ~
- * C / N^4 mm): helix tube 37.2, Bezier blend 0.47, tilted arc ~0, pipe 0.10; the float32
- * floor is 3-8e-6 mm (about 1 ulp of coordinates up to 100 mm). Choose N by that table (or
- * by step doubling: the model's job, not this kernel's).
+ * The node frame (P, Q) is local, not marched (MATH-spine 9.7): P = unit(e - (e.T) T) for a
+ * fixed unit axis e that is never along T (struct spine ax), Q = T x P. The RMF's twist
+ * against (P, Q) moves into the transport, which stays traceless (det M = 1):
+ *
+ *     M' = A M,   A = [[-d, s + r], [s - r, d]],   d = f c_uu.P,  s = f c_uu.Q,  r = eta c_uu.Q,
+ *     f = R_u / (2 v sqrt(v^2 - R_u^2)),   eta = (e.T) / (2 v sqrt(1 - (e.T)^2)),   v = |c_u|,
+ *     M(0) = the rotation by phi0/2, phi0 the angle of N1(0) from P(0).
+ *
+ * Numerics (MATH-spine 9.7): march nodes u_k = k / N (N = nsteps). M by N steps of the
+ * two-point Hermite Magnus-4 (A and A' at the nodes: one jet per step), in increment form;
+ * between two nodes, M by the quintic Hermite interpolant of (M, M', M'') at both ends. A
+ * point at any u costs one jet, the frame and the interpolant; the march steps only when u
+ * leaves its interval. Orders: 4 (march), 6 (interpolant). The iterator picks N by step
+ * doubling (spine_path_init); this kernel takes N as given.
  *
  * Conventions (the same as tests/ref_spine.h, which judges this kernel):
  *   - u in [0, 1] is the normalized spine parameter; every length in mm, angles in radians.
@@ -31,12 +38,13 @@
  *   - n points AWAY from the spine. An offset off gives c + (R + off) n: off = +r is the
  *     ball-end centre of an OUTSIDE tool, off = -r of an INSIDE tool (fillet, bore).
  *
- * Memory: struct spine is the whole context (<= 320 B in the float build, checked by a static
- * assert); no allocation, no table: the march keeps only the current node. spine_node(i)
- * goes forward from the current node, or restarts from u = 0 when i is behind it;
- * spine_node_back(i) is the backward pass (forward to u = 1 once, then back) that the
- * backward lines of a zigzag use. Each pass is one fixed sequence of steps, so a node's
- * state depends only on (pass, node): seeks and resumes are bit for bit.
+ * Memory: struct spine is the whole context (<= 320 B in the float build with the iterator,
+ * checked by static asserts); no allocation, no table: the march keeps its current node and
+ * the interpolant of one interval. Points are evaluated at u = num / den (spine_eval): on
+ * the forward pass the march goes on from its node or restarts from u = 0 when u is behind
+ * it; the backward pass (the backward lines of a zigzag) marches forward to u = 1 once,
+ * then back. Each pass is one fixed sequence of steps, so a point depends only on (pass,
+ * u): seeks and resumes are bit for bit.
  */
 #ifndef SPINE_H
 #define SPINE_H
@@ -74,7 +82,7 @@ enum spine_law {
 #define SPINE_COORD_MAX CP_R(1.0e4) /* |every length parameter| <= 10 m */
 #define SPINE_K_MAX CP_R(64.0)      /* |k| of the COS law */
 #define SPINE_TURNS_MAX CP_R(64.0)  /* helix turns */
-#define SPINE_NSTEPS_MAX 1024u      /* transport steps N (2N double reflections) */
+#define SPINE_NSTEPS_MAX 1024u      /* march steps N */
 #define SPINE_CHECK_N 256u          /* the spine's |c_u| is also sampled at u = k / 256 */
 
 struct spine_cfg {
@@ -91,51 +99,52 @@ struct spine_cfg {
 
 /* The jet of the spine and the law at one u (spine_jet). */
 struct spine_jet {
-    struct cp_vec3 c, cu, cuu;
+    struct cp_vec3 c, cu, cuu, cuuu;
     cp_real r, ru, ruu;
 };
 
-/* The context: the validated configuration and the march's current node. Read-only for the
- * caller; changed by spine_init and spine_node only. */
+/* The context: the validated configuration and the march. Read-only for the caller;
+ * changed by spine_init, spine_eval, spine_node and spine_node_back only. */
 struct spine {
     uint8_t kind, law;
-    uint16_t nsteps;    /* N */
-    uint16_t node;      /* the march's current node i (0..N) */
-    uint8_t back;       /* 1: node reached by a backward pass (spine_node_back), 0: forward */
-    cp_real sp[12];     /* copy of the spine parameters */
-    cp_real rp[4];      /* copy of the law parameters */
+    uint8_t back;       /* 1: the march state was reached by a backward pass */
+    uint16_t nsteps;    /* N: march steps, nodes u_k = k / N */
+    uint16_t node;      /* the march's current node k (0..N) */
+    cp_real sp[12];     /* the spine parameters; BEZIER: its power basis B0..B3 about u = 1/2,
+                           c = B0 + B1 w + B2 w^2 + B3 w^3, w = u - 1/2 (spine_init) */
+    cp_real rp[4];      /* the law parameters; CUBIC: its power basis about u = 1/2 */
     struct cp_vec3 e1;  /* ARC, HELIX: unit in-plane start direction */
     struct cp_vec3 e2;  /* ARC, HELIX: ax x e1 */
-    struct cp_vec3 ax;  /* ARC: unit normal; HELIX: unit axis */
-    struct cp_vec3 n10; /* N1(0), unit, normal to T(0) */
-    cp_real rmin, rmax; /* min and max of R over the init samples, mm */
-    cp_real amax;       /* max |a| over the init samples (< 1) */
+    struct cp_vec3 ax;  /* the frame axis e (unit, never along T): ARC the plane's normal,
+                           HELIX the axis, LINE the reference made normal to the line, BEZIER
+                           the best of six candidates (spine_init) */
+    cp_real z0[2];      /* cos, sin of phi0/2: M(0) = [[z0[0], z0[1]], [-z0[1], z0[0]]] */
+    cp_real rmin;       /* min R over the init samples, mm */
     /* the march at node `node`: */
-    struct cp_vec3 x;   /* c(u_i) */
-    struct cp_vec3 t;   /* unit T(u_i) */
-    struct cp_vec3 r;   /* N1 carried by double reflection (renormalized at output only) */
-    cp_real m[4];       /* transport M = [[m0, m1], [m2, m3]] */
-    cp_real a0[2];      /* A~(u_i) = [[-a0[0], a0[1]], [a0[1], a0[0]]] */
-    struct spine_jet j; /* the jet at u_i (the step's last evaluation, reused by the fill) */
+    cp_real m[4];       /* M(u_k) = [[m0, m1], [m2, m3]] */
+    cp_real g[3];       /* A(u_k) as (d, s, r) */
+    cp_real gd[3];      /* dA/du (u_k) as (d, s, r) */
+    cp_real pc[6][4];   /* M on the interval [u_lo, u_lo + 1/N] (lo = node - 1 forward, node
+                           backward): M = sum_i pc[i] t^i, t = N (u - u_lo) in [0, 1] */
 };
 
-/* Everything a point at node u_i needs (spine_node fills it; shared by all lines there). */
+/* Everything a point at one u needs (spine_eval fills it; shared by all lines there). */
 struct spine_state {
-    cp_real u;           /* u_i = i / N */
-    uint16_t node;       /* i */
-    struct cp_vec3 c;    /* c(u_i), mm */
+    cp_real u;           /* u = num / den */
+    uint16_t node;       /* the march node at or below u */
+    struct cp_vec3 c;    /* c(u), mm */
     struct cp_vec3 t;    /* unit tangent T */
-    struct cp_vec3 n1;   /* RMF N1: unit, normal to T */
-    struct cp_vec3 n2;   /* T x N1 */
-    cp_real r;           /* R(u_i), mm (> 0) */
+    struct cp_vec3 n1;   /* the node frame P: unit, normal to T (not the RMF) */
+    struct cp_vec3 n2;   /* Q = T x P */
+    cp_real r;           /* R(u), mm (> 0) */
     cp_real a, b;        /* dR/ds (|a| < 1) and sqrt(1 - a^2) */
-    cp_real as;          /* da/ds, 1/mm */
-    cp_real k1, k2;      /* T' = k1 N1 + k2 N2 (per mm of arc) */
-    cp_real m[4];        /* transport M(u_i), det = 1 up to rounding */
-    /* shared by every point at this node: n = at + cos(theta) bn1 + sin(theta) bn2 */
+    cp_real as;          /* da/ds, 1/mm (spine_node, spine_node_back, spine_eval with full) */
+    cp_real k1, k2;      /* T' = k1 P + k2 Q per mm of arc (the same) */
+    cp_real m[4];        /* transport M(u), det = 1 up to rounding */
+    /* shared by every point at this u: n = at + cos(psi) bn1 + sin(psi) bn2 */
     struct cp_vec3 at;   /* -a T */
-    struct cp_vec3 bn1;  /* b N1 */
-    struct cp_vec3 bn2;  /* b N2 */
+    struct cp_vec3 bn1;  /* b P */
+    struct cp_vec3 bn2;  /* b Q */
 };
 
 /* The homogeneous label of a family-2 line: (sin(theta0/2), cos(theta0/2)). */
@@ -151,14 +160,14 @@ struct spine_label {
  *                      |span| > 2 pi, HELIX turns <= 0 or > SPINE_TURNS_MAX
  *   CP_ERR_EMPTY       ARC span = 0
  *   CP_ERR_DEGENERATE  ARC/HELIX: zero normal/axis or a start direction along it; any spine:
- *                      |c_u| <= 1e-5 (1 + max |sp[i]|) at a half node u = k / (2N) or at
+ *                      |c_u| <= 1e-5 (1 + max |sp[i]|) at a node u = k / N or at
  *                      u = k / SPINE_CHECK_N (LINE with P0 = P1, Bezier cusp or coincident
- *                      control points; a cusp strictly between samples is not seen)
- *   CP_ERR_RADIUS      R <= 0 at a sample (the half nodes and u = k / SPINE_CHECK_N)
- *   CP_ERR_RANGE       |a| = |R_u| / |c_u| >= 1 at a sample (the half nodes, i.e. the nodes
- *                      and the Simpson midpoints where the transport evaluates A~, and
- *                      u = k / SPINE_CHECK_N). Proposed for its own code (CP_ERR_SLOPE), see
- *                      the report of issue 18.
+ *                      control points; a cusp strictly between samples is not seen); BEZIER:
+ *                      no frame axis keeps |e x T| >= SPINE_AXIS_MIN at the samples
+ *   CP_ERR_RADIUS      R <= 0 at a sample (the nodes and u = k / SPINE_CHECK_N)
+ *   CP_ERR_RANGE       |a| = |R_u| / |c_u| >= 1 at a sample (the nodes, where the march
+ *                      evaluates A, and u = k / SPINE_CHECK_N). Proposed for its own code
+ *                      (CP_ERR_SLOPE), see the report of issue 18.
  *   CP_ERR_FRAME_REF   ref non-zero and its projection on the normal plane at u = 0 is
  *                      <= 1e-4 |ref| (ref along T(0))
  *   CP_ERR_FRENET      ref zero and the principal normal at u = 0 is <= 1e-4 |c_u|^2 (a LINE,
@@ -167,30 +176,43 @@ struct spine_label {
  * tool offset, and is the iterator's check. Returns CP_OK. On error *s is unusable. */
 int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps) CP_MUST_CHECK;
 
-/* The jet of the spine and the law at u (meaningful for u in [0, 1]): c, c_u, c_uu (mm per
- * unit u), R, R_u, R_uu. One cp_sincos for ARC and HELIX, one for the COS law. Cannot fail. */
+/* Least |e x T| over the samples that spine_init accepts for a Bezier's frame axis. Near
+ * it the frame turns fast (eta ~ 1 / |e x T|) and the iterator's step doubling asks for
+ * more march steps. */
+#define SPINE_AXIS_MIN CP_R(1.0e-2)
+
+/* The jet of the spine and the law at u (meaningful for u in [0, 1]): c, c_u, c_uu, c_uuu
+ * (mm per unit u), R, R_u, R_uu. One cp_sincos kernel for ARC and HELIX, one for the COS
+ * law. Rounding: a few ulp of max |sp| (BEZIER: Horner in |w| <= 1/2). Cannot fail. */
 void spine_jet(const struct spine *s, cp_real u, struct spine_jet *j);
 
-/* Bring the march to node i (0 <= i <= N) and fill *st. Forward from the current node (cost
- * (i - node) steps: 2 jets, 2 double reflections, 1 Magnus step each), or restarts from u = 0
- * when i < node (cost i steps). CP_ERR_RANGE if i > N or st NULL (nothing changed);
- * CP_ERR_NUMERIC if a non-finite value appeared (cannot happen after a successful init with
- * finite arithmetic; kept as the iterator's guard). Returns CP_OK. */
+/* The state at u = num / den (0 <= num <= den, 1 <= den <= 65535) on the forward pass
+ * (back = 0) or the backward pass (back = 1): one jet at u, the frame, and M from the
+ * march: at a node (num N divisible by den) the node's M, else the interpolant of the
+ * node's interval. The march steps as needed (forward: on to the node above u, or a
+ * restart when u is behind it; backward: forward to node N once per pass, then back to the
+ * node at or below u). full = 0 leaves st->as, k1, k2 unset (the streaming path). Cost
+ * without a march step: one jet, ~60 flops of frame, 4 degree-5 Horner sums. CP_ERR_RANGE
+ * for num > den, den = 0 or st NULL (nothing changed); CP_ERR_NUMERIC if a non-finite value
+ * appeared (cannot happen after a successful init with finite arithmetic; kept as the
+ * iterator's guard). Returns CP_OK. */
+int spine_eval(struct spine *s, uint32_t num, uint32_t den, uint8_t back, uint8_t full,
+               struct spine_state *st) CP_MUST_CHECK;
+
+/* spine_eval(s, i, N, 0, 1, st): the state at march node i (0 <= i <= N), forward pass.
+ * CP_ERR_RANGE if i > N. */
 int spine_node(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
 
-/* The backward pass: bring the march to node i as reached from node N by backward steps
- * (sp_step inverted: the same truncation error as the forward march in exact arithmetic,
- * only the rounding differs). From a forward state the march first goes on to N (cost
- * N - node steps, once per pass), then back (node - i steps); a backward state ahead of i
- * steps back, one behind i restarts (i = N is the forward state at N). Errors as
- * spine_node. */
+/* spine_eval(s, i, N, 1, 1, st): the state at node i on the backward pass (the march from
+ * node N by backward steps: the Hermite Magnus step run with -h is exactly the inverse, so
+ * a backward pass makes the forward march's truncation error, only the rounding differs). */
 int spine_node_back(struct spine *s, uint16_t i, struct spine_state *st) CP_MUST_CHECK;
 
 /* The label of the line theta0 (radians, any finite value; |theta0| <= 1e5 in the float
  * build): one cp_sincos(theta0 / 2). Lines theta0 and theta0 + 2 pi are the same line. */
 void spine_label(cp_real theta0, struct spine_label *lab);
 
-/* The family-2 line with label lab at the node of st: pt->p = c + (R + off) n, pt->n = n
+/* The family-2 line with label lab at the u of st: pt->p = c + (R + off) n, pt->n = n
  * (unit, away from the spine), pt->t = u. line and index are not written. off in mm, |off|
  * < R for an inside tool (the caller's check). No trigonometry: y = M y0, then one division.
  * Rounding only (beyond the march): a few ulp of |c| + R. */
@@ -200,18 +222,20 @@ void spine_point_label(const struct spine_state *st, const struct spine_label *l
 /* The same with the label made here from theta0 (one cp_sincos). */
 void spine_point(const struct spine_state *st, cp_real theta0, cp_real off, struct raster_pt *pt);
 
-/* The family-1 circle at the node of st, at angle theta in the transported frame (N1, N2)
- * (NOT a line label): one cp_sincos(theta). pt as for spine_point. */
-void spine_circle_point(const struct spine_state *st, cp_real theta, cp_real off,
+/* The family-1 circle at the u of st, at angle psi in the node frame (P, Q) = (n1, n2) (NOT
+ * a line label, NOT the RMF): one cp_sincos(psi). pt as for spine_point. */
+void spine_circle_point(const struct spine_state *st, cp_real psi, cp_real off,
                         struct raster_pt *pt);
 
-/* The angle of the line lab at st's node as (cos theta, sin theta), exact rational form. */
+/* The angle psi of the line lab at st's u in the node frame, as (cos psi, sin psi), exact
+ * rational form. */
 void spine_angle(const struct spine_state *st, const struct spine_label *lab, cp_real *ct,
                  cp_real *sn);
 
-/* Regularity D = b^2 - (R + off)(a_s + b (k1 cos theta + k2 sin theta)) of the surface offset
- * by off, at angle (ct, sn) (MATH-spine 3.3, 8): the Jacobian is (R + off)|D|; D = 0 on a
- * cuspidal edge. A regular patch keeps D > 0 (the iterator's check, CP_ERR_CUSP). */
+/* Regularity D = b^2 - (R + off)(a_s + b (k1 cos psi + k2 sin psi)) of the surface offset
+ * by off, at angle (ct, sn) in the node frame (MATH-spine 3.3, 8; st from a full
+ * evaluation): the Jacobian is (R + off)|D|; D = 0 on a cuspidal edge. A regular patch
+ * keeps D > 0 (the iterator's check, CP_ERR_CUSP). */
 cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, cp_real off);
 
 /* ---- the toolpath iterator (path.h; raster semantics of raster.h) ----
@@ -226,41 +250,49 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  *            points: the family-2 lines theta0 = u0 + i (u1 - u0)/steps at u_j (the same
  *            patch as LINES: raster span LINES), zigzag in theta0; the link from circle j to
  *            j + 1 runs along the line where circle j stopped, at u = (j + a/(link + 1))/(n-1).
- * Every point is (node, label): the march of struct spine to a node, then one cp_sincos (the
- * label) and spine_point_label. The march nodes: N = q steps (LINES) or q (n - 1)(link + 1)
- * (CIRCLES, q rounded up to even), q >= 1 the least integer with N >= SPINE_PATH_NMIN (the march's accuracy,
- * MATH-spine 9.3: 32 nodes keep the helix tube, C = 37.2, at 3.5e-5 mm before float
- * rounding), N <= SPINE_NSTEPS_MAX (else CP_ERR_TOO_MANY).
- * Cost: q march steps per point (each 2 jets + 2 double reflections + 1 Magnus step); the
- * odd (backward) lines of LINES and their links run spine_node_back: one backward step per
- * node, the forward march on to u = 1 done by the line before. A seek costs at most one
- * restart plus the march to the point's node (2N steps for a point on a backward line).
+ * Every point is (u, label): spine_eval at u = i / steps (LINES) or u = (j (link + 1) + a) /
+ * ((n - 1)(link + 1)) (CIRCLES), then the label (one cp_sincos per line, cached) and
+ * spine_point_label. The odd (backward) lines of LINES and their links are on the backward
+ * pass.
+ * The march: N = SPINE_PATH_NMIN, doubled (up to SPINE_NSTEPS_MAX) until the step-doubling
+ * estimate of the march error, (R_max + tool_r) max_k ||M_N(u_k) - M_2N(u_k)|| / 15 over
+ * the nodes of the N march (M relative to its size), is <= SPINE_MARCH_TOL and every
+ * step keeps |h A| <= SPINE_STEP_MAX (the exp series' range), else CP_ERR_TOL; independent
+ * of the points per line (MATH-spine 9.7: 32 steps give ~0.14 um on the helix tube; the
+ * interpolant adds ~1 nm there).
+ * Cost: one jet + frame + interpolant per point, plus a march step (one jet, A and A', the
+ * Magnus step, the interpolant's 24 coefficients) each time u crosses a node: about
+ * N / steps steps per point, i.e. one per steps / N points when steps > N. A backward line
+ * first marches on to u = 1 (once per line); a seek costs at most one restart plus 2N steps.
  * Output: SURFACE the surface point m; CENTRE the ball-end centre m - r n (inside tool: the
  * canal surface of radius R - r, n points away from the spine); TIP that centre - r z.
  * Checked at init (before the first point), in this order: spine_init's codes; raster_check's
- * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; steps == 0: the steps from tol
- * by raster_fit (start 16, pilot, aim 0.8 tol, accept 0.9 tol) on the sagitta estimate
- * |P(i-1) - 2 P(i) + P(i+1)| / 8 of the emitted points of every line (each marched from
- * u = 0: n N march steps per walk) or circle, CP_ERR_TOL when N would exceed
- * SPINE_NSTEPS_MAX (measured against ref_spine: the worst chord 0.57-0.84 tol, test_spine
- * spine_path_tol); link == RASTER_LINK_AUTO: LINES derive it
- * from tol (1 um when tol = 0) by the exact on-circle sagitta of the link chords (the least
- * link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES derive it with the steps in the
- * same raster_fit walks from the exact midpoint sagitta of every link segment on the lines
- * u0 and u1 (CIRCLES keep q even, >= 2, so those midpoints are march nodes: (n - 1)(link
- * + 1) <= SPINE_NSTEPS_MAX / 2);
- * N > SPINE_NSTEPS_MAX CP_ERR_TOO_MANY; tool_r >= the min R of spine_init's samples
- * CP_ERR_TOOL; then one forward march over all N nodes: at every node and every label of the
- * patch (the streamed lines and link labels; CIRCLES: the steps + 1 labels) the regularity D
- * of the surface (off = 0) and of the tool-centre surface (off = -r) must be > 0, else
- * CP_ERR_CUSP (a cusp strictly between nodes or labels is not seen); CP_ERR_NUMERIC for a
- * non-finite march. */
+ * (raster.h); labels != ANGLE or span != LINES CP_ERR_INVAL; the march N (above); steps == 0:
+ * the steps from tol by raster_fit (start 16, pilot, aim 0.8 tol, accept 0.9 tol) on the
+ * sagitta estimate |P(i-1) - 2 P(i) + P(i+1)| / 8 of the emitted points of every line or
+ * circle (measured against ref_spine: the worst chord 0.57-0.84 tol, test_spine
+ * spine_path_tol), CP_ERR_TOL when steps would exceed CP_MAX_STEPS; link == RASTER_LINK_AUTO:
+ * LINES derive it from tol (1 um when tol = 0) by the exact on-circle sagitta of the link
+ * chords (the least link meeting it, CP_ERR_TOL above CP_MAX_LINK); CIRCLES derive it with
+ * the steps in the same raster_fit walks from the exact midpoint sagitta of every link
+ * segment on the lines u0 and u1; tool_r >= the min R of spine_init's samples CP_ERR_TOOL;
+ * then at every streamed u and every march node, and every label of the patch (the streamed
+ * lines and link labels; CIRCLES: the steps + 1 labels) the regularity D of the surface
+ * (off = 0) and of the tool-centre surface (off = -r) must be > 0, else CP_ERR_CUSP (a cusp
+ * strictly between those u or labels is not seen); CP_ERR_NUMERIC for a non-finite march. */
 #define SPINE_PATH_NMIN 32u
+#if CP_REAL_DOUBLE
+#define SPINE_MARCH_TOL 2.0e-7 /* mm: the march's estimated error bound (double: 0.2 nm) */
+#else
+#define SPINE_MARCH_TOL 2.0e-5f /* mm (float: 0.02 um, a few float ulp of 100 mm) */
+#endif
+#define SPINE_STEP_MAX CP_R(0.25)    /* max (|d| + |s| + |r|) h over the march's nodes */
 
 struct spine_path {
     struct raster_head head; /* mode, n, steps, link, count, k (raster.h) */
     uint8_t output;          /* enum raster_output */
-    uint16_t q;              /* march nodes per raster node step */
+    uint16_t den;            /* u = num / den: LINES steps, CIRCLES (n - 1)(link + 1) (1 for
+                                n = 1) */
     uint16_t nl;             /* label intervals: LINES (n - 1)(link + 1), CIRCLES steps */
     cp_real tool_r;          /* mm */
     cp_real u0, u1;          /* label range, radians */
