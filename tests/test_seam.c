@@ -203,3 +203,49 @@ int test_seam_canal_open(void)
     CHECK_EQ_INT(both(&s), CP_OK);
     return 0;
 }
+
+/* ---- GSR: a ring of elliptic sections around a closed circle ---- */
+#if CP_WITH_GSR
+#include "gsr.h"
+
+/* centre: a circle of radius 10 in z = 0 (w = turns x 2 pi), N0 frame with N = +z; f_t = u;
+ * f_N = fn0 + a u + b sin(wb u), f_B = 2 */
+static int gsr_try(double turns, double a, double b, double wb)
+{
+    static struct gsr_cfg cf;
+    static struct gsr g;
+    memset(&cf, 0, sizeof cf);
+    cf.centre = GSR_CENTRE_POLY;
+    cf.frame = GSR_FRAME_N0;
+    cf.section = GSR_SECTION_RATIONAL;
+    cf.c[0][GSR_C] = CP_R(10.0);
+    cf.c[0][GSR_W] = (cp_real)(turns * 6.283185307179586);
+    cf.c[1][GSR_B] = CP_R(10.0);
+    cf.c[1][GSR_W] = (cp_real)(turns * 6.283185307179586);
+    cf.r[0][0] = CP_R(2.5);
+    cf.r[0][1] = (cp_real)a;
+    cf.r[0][GSR_B] = (cp_real)b;
+    cf.r[0][GSR_W] = (cp_real)wb;
+    cf.r[1][0] = CP_R(2.0);
+    cf.r[2][1] = CP_R(1.0);
+    cf.ref.z = CP_R(1.0);
+    return gsr_init(&g, &cf);
+}
+
+int test_seam_gsr(void)
+{
+    const double pi = 3.141592653589793;
+    CHECK_EQ_INT(gsr_try(1.0, 0.0, 0.0, 0.0), CP_OK);           /* constant sections */
+    CHECK_EQ_INT(gsr_try(1.0, 0.5, 0.0, 0.0), CP_ERR_SEAM);     /* f_N 2.5 -> 3 */
+    CHECK_EQ_INT(gsr_try(1.0, 0.0, 0.5, 2.0 * pi), CP_OK);      /* one full sine: closes */
+    CHECK_EQ_INT(gsr_try(1.0, 0.0, 0.5, pi), CP_ERR_SEAM);      /* half a sine: a crease */
+    CHECK_EQ_INT(gsr_try(0.75, 0.5, 0.0, 0.0), CP_OK);          /* open: any law */
+    CHECK_EQ_INT(gsr_try(0.75, 0.0, 0.5, pi), CP_OK);
+    return 0;
+}
+#else
+int test_seam_gsr(void)
+{
+    return 0;
+}
+#endif
