@@ -45,7 +45,7 @@ struct mp_job {
 static const char *const job_canal[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",
                                         "LINES 24 -25 10", "STEPS 1000", NULL};
 /* An ellipse: varying curvature, Lambda by Simpson + Kahan (2 jets per point). */
-static const char *const job_ellipse[] = {"CURVE ELLIPSE 0 0 4 3 0 360", "RADIUS LINEAR 1 1.5",
+static const char *const job_ellipse[] = {"CURVE ELLIPSE 0 0 4 3 0 300", "RADIUS LINEAR 1 1.5",
                                           "LINES 10 -40 40", "STEPS 2000", NULL};
 /* Characteristic circles of the paper's canal (span ANGLE) with links along u = const. */
 static const char *const job_circles[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 5.5 10.5 2",

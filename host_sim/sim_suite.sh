@@ -69,7 +69,8 @@ run-native|run-qemu)
         echo "sim-run-qemu: $QEMU not found (apt-get install qemu-system-arm)"
         echo "$suite: 0 passed, 1 failed"; exit 1
     fi
-    for job in paper_gcode paper_frames paper_gcode_cs boss_gcode boss_frames placed_gcode placed_frames; do
+    for job in paper_gcode paper_frames paper_gcode_cs boss_gcode boss_frames placed_gcode placed_frames \
+        seam_gcode; do
         hs "$job" "$tgt" --job "$J/$job.job" --csv "$OUT/$job.csv" --gcode "$OUT/$job.nc" \
             --svg "$OUT/$job.svg"
         result "$job" $? "$(figs "$job")"

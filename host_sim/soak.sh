@@ -84,7 +84,7 @@ mkjobs() { # prefix lines circles circle-steps patch-circles patch-steps
     job "${p}_paper_frames" frames "$a" "$r" "LINES $nl -25 10" "STEPS 1000" "FEED 600"
     job "${p}_paper_cs" cs "$a" "$r" "LINES $nl -25 10" "STEPS 1000" "FEED 600"
     job "${p}_circles_frames" frames "$a" "$r" "CIRCLES $nc -25 10" "STEPS $cs"
-    job "${p}_ellipse_frames" frames "CURVE ELLIPSE 0 0 4 3 0 360" "RADIUS LINEAR 1 1.5" \
+    job "${p}_ellipse_frames" frames "CURVE ELLIPSE 0 0 4 3 0 300" "RADIUS LINEAR 1 1.5" \
         "LINES $nl -40 40" "STEPS 1000" "FEED 900"
     job "${p}_patch_cs" cs "$a" "$r" "CIRCLES $np -25 10 PATCH" "STEPS $ps"
     job "${p}_bezier_tool_frames" frames "CURVE BEZIER 0 0 10 20 30 -20 40 0" \

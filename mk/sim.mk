@@ -121,7 +121,7 @@ example-model: $(BUILD)/host/host_sim
 sim-machines: $(BUILD)/host/fw_native $(BUILD)/host/host_sim m4f-fw
 	$(Q)BUILD=$(BUILD) QEMU=$(QEMU) sh host_sim/sim_suite.sh machines
 
-## sim-run-native: paper + boss jobs, GCODE/CHECKSUM/FRAMES, judged, natively (word "run-native")
+## sim-run-native: paper + boss + placed jobs, GCODE/CHECKSUM/FRAMES, and a closed arc refused (error:46) then streamed, judged, natively (word "run-native")
 sim-run-native: $(BUILD)/host/fw_native $(BUILD)/host/host_sim
 	$(Q)BUILD=$(BUILD) sh host_sim/sim_suite.sh run-native
 

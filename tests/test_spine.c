@@ -273,6 +273,41 @@ static int init_with(int kind, int law, const double sp[12], const double rp[4],
     return spine_init(&s, &cfg, (uint16_t)n);
 }
 
+/* Closed spines need closing radius laws (issue 22, raster_seam_check): an ARC of 2 pi, a
+ * HELIX of pitch 0 over 2 whole turns and a Bezier with P3 = P0, each with laws that close
+ * (accepted) and laws whose value or slope jumps at the seam (CP_ERR_SEAM); the same laws
+ * on open spines are accepted. Every refusal is a test that fails without the check. */
+int test_spine_seam(void)
+{
+    static const double arc[12] = {0, 0, 0, 0, 0, 1, 20, 1, 0, 0, 2.0 * PI_D};
+    static const double arc_open[12] = {0, 0, 0, 0, 0, 1, 20, 1, 0, 0, 1.9 * PI_D};
+    static const double ring[12] = {0, 0, 0, 0, 0, 1, 20, 0, 2, 1, 0, 0};
+    static const double coil[12] = {0, 0, 0, 0, 0, 1, 20, 5, 2, 1, 0, 0};
+    static const double tear[12] = {0, 0, 0, 60, 40, 10, -60, 40, -10, 0, 0, 0};
+    static const double cos_k2[4] = {1, 5, 2}, cos_k25[4] = {1, 5, 2.5}, cos_k201[4] = {1, 5, 2.001};
+    static const double lin[4] = {3, 4}, cub_ok[4] = {3, 5, 1, 3}, cub_bad[4] = {3, 5, 4, 3};
+    static const double cub_step[4] = {3, 4, 4, 3.5}, r3[4] = {3};
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_COS, arc, cos_k2, NULL, 32), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_COS, arc, cos_k25, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_COS, arc, cos_k201, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_LINEAR, arc, lin, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_CONST, arc, r3, NULL, 32), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_LINEAR, arc_open, lin, NULL, 32), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_ARC, SPINE_R_COS, arc_open, cos_k25, NULL, 32), CP_OK);
+    /* a pitch-0 helix is its circle twice: closed; with pitch 5 it is open */
+    CHECK_EQ_INT(init_with(SPINE_HELIX, SPINE_R_COS, ring, cos_k2, NULL, 32), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_HELIX, SPINE_R_COS, ring, cos_k25, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_HELIX, SPINE_R_COS, coil, cos_k25, NULL, 32), CP_OK);
+    /* the teardrop: P3 = P0 (a corner at the seam: allowed); CUBIC r0 = r3 with equal end
+     * slopes per arc length (the end tangents have equal lengths here) closes; unequal
+     * slopes or a value step do not */
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CUBIC, tear, cub_ok, NULL, 32), CP_OK);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CUBIC, tear, cub_bad, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CUBIC, tear, cub_step, NULL, 32), CP_ERR_SEAM);
+    CHECK_EQ_INT(init_with(SPINE_BEZIER, SPINE_R_CONST, tear, r3, NULL, 32), CP_OK);
+    return 0;
+}
+
 int test_spine_init_errors(void)
 {
     static const double line[12] = {0, 0, 0, 10, 0, 0}, zero[12] = {1, 2, 3, 1, 2, 3};

@@ -439,6 +439,13 @@ static const struct {
     {{GOOD_CANAL, "MACHINE GRBL", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "MACHINE LINUXCNC", "CHECKSUM ON", NULL}, CP_ST_DIALECT},
     {{GOOD_CANAL, "LINK MACHINE", NULL}, CP_ST_NO_MACHINE_LINK},
+    /* closed curves whose law does not close (issue 22): the issue's R = cos(2.5 theta) + 5
+     * on a 360 degree arc, a LINEAR law on a closed ellipse, a closed Bezier whose CUBIC
+     * law closes in value but not in slope */
+    {{"CURVE ARC 0 0 3 0 360", "RADIUS COS 1 5 2.5", "LINES 2 -20 5", NULL}, CP_ST_SEAM},
+    {{"CURVE ELLIPSE 0 0 4 3 0 360", "RADIUS LINEAR 1 1.5", "LINES 2 -20 5", NULL}, CP_ST_SEAM},
+    {{"CURVE BEZIER 0 0 40 40 -40 40 0 0", "RADIUS CUBIC 3 4 4 3", "LINES 2 -20 5", NULL},
+     CP_ST_SEAM},
 #if CP_WITH_SPINE
     /* SURFACE SPINE: a cusp (an arc of radius 5 with R = 6), a straight spine without
      * SPINEREF, the tool, TOL alone beyond the march */
@@ -526,6 +533,44 @@ int test_stream_bad_input(void)
         rig.m.out_len = 0;
         CHECK(expect_code("$I", 0));
         CHECK(load(paper_job));
+    }
+    return 0;
+}
+
+/* A closed curve whose law does not close: RUN's whole answer is the one error line, before
+ * any program line or frame (G-code and FRAMES); with a closing law the same job streams. */
+int test_stream_seam(void)
+{
+    static const char want[] = "error:46 radius or section law jumps at the seam\n";
+    static const char *const job[] = {"CURVE ARC 0 0 3 0 360", "RADIUS COS 1 5 2.5",
+                                      "LINES 2 -20 5", "STEPS 40", "FEED 600", "SAFE 20", NULL};
+    unsigned f;
+    int i;
+    for (f = 0; f < 2u; f++) {
+        rig_init();
+        CHECK(load(job));
+        CHECK(expect_code(f ? "FORMAT FRAMES" : "FORMAT GCODE", 0));
+        rig.scan = 0;
+        rig.m.out_len = 0;
+        host_send("RUN\n");
+        for (i = 0; i < 200; i++) {
+            (void)proto_poll(&rig.p);
+        }
+        if (rig.m.out_len != sizeof want - 1u || memcmp(rig.m.out, want, sizeof want - 1u) != 0) {
+            printf("  RUN answered %u bytes: \"%.*s\"\n", (unsigned)rig.m.out_len,
+                   (int)(rig.m.out_len < 80u ? rig.m.out_len : 80u), (const char *)rig.m.out);
+            return __LINE__;
+        }
+        CHECK_EQ_INT(rig.p.state, PROTO_IDLE);
+        rig.m.out_len = 0;
+        CHECK(expect_code("RADIUS COS 1 5 3", 0)); /* k = 3 closes */
+        CHECK(expect_code("FORMAT GCODE", 0));
+        CHECK(expect_code("LINES 1 0 0", 0));
+        {
+            char r[128];
+            CHECK(command("RUN", r, sizeof r)); /* the program's first line: it streams */
+            CHECK(strncmp(r, "G21", 3) == 0);
+        }
     }
     return 0;
 }

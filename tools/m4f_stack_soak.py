@@ -368,7 +368,7 @@ jobs_b = [
     ("paper_frames_drop", PAPER + ["LINES 4 -25 10", "STEPS 300", "FORMAT FRAMES"], "drop@20011"),
     ("circles_frames_flip", PAPER + ["CIRCLES 30 -25 10", "STEPS 60", "FORMAT FRAMES"], "flip@30001"),
     ("patch_frames_dup", PAPER + ["CIRCLES 22 -25 10 PATCH", "STEPS 100", "FORMAT FRAMES"], "dup@15003"),
-    ("ellipse_frames_hangup", ["CURVE ELLIPSE 0 0 4 3 0 360", "RADIUS LINEAR 1 1.5", "LINES 4 -40 40",
+    ("ellipse_frames_hangup", ["CURVE ELLIPSE 0 0 4 3 0 300", "RADIUS LINEAR 1 1.5", "LINES 4 -40 40",
                                "STEPS 300", "FORMAT FRAMES"], "hangup@20001"),
     ("bezier_tool_cs_hangup", ["CURVE BEZIER 0 0 10 20 30 -20 40 0", "RADIUS CUBIC 3 4 4 3",
                                "TOOL BALL 1", "LINES 4 0 80", "STEPS 300", "FEED 900", "SAFE 40",

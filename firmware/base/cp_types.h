@@ -84,7 +84,10 @@ enum cp_err {
     CP_ERR_ISOTROPIC = -27,     /* a = b with n != 2: section orientation undefined */
     CP_ERR_TURN = -28,          /* a turning angle >= 90 degrees (data too sparse, cusp) */
     CP_ERR_TWIST = -29,         /* adjoining planes twist >= 45 degrees (3D data too sparse) */
-    CP_ERR_BUFFER = -30         /* caller buffer too small (the function reports the size) */
+    CP_ERR_BUFFER = -30,        /* caller buffer too small (the function reports the size) */
+    /* closed curves (issue 22); wire code 46 */
+    CP_ERR_SEAM = -31           /* closed curve: a law's value or slope jumps at the seam
+                                   (raster_seam_check, raster.h) */
 };
 
 /* C99 compile-time assertion (no _Static_assert in C99). File scope only, unique tag. */

@@ -6,6 +6,7 @@
  */
 #include "canal.h"
 #include "cp_math.h"
+#include "raster.h" /* raster_seam_check */
 
 /* Number of used parameters per kind. */
 static const uint8_t curve_nparams[4] = {
@@ -254,9 +255,10 @@ static int curve_interval(struct canal *c, cp_real *size)
 
 /* canal_curve_check and canal_init, the curve alone: its parameters into c (copy_params:
  * |v| <= CANAL_COORD_MAX, the angles of an ARC/ELLIPSE |v| <= 4 pi), its interval
- * (curve_interval), least speed and the degeneracy test. c->radius and c->rp must be
- * set (a BEZIER's speed is read from the jet, which evaluates R too). */
-static int curve_setup(struct canal *c, const struct canal_cfg *cfg)
+ * (curve_interval), least speed and the degeneracy test; its size (mm: the scale of the
+ * degeneracy and seam tests) in *size_out. c->radius and c->rp must be set (a BEZIER's
+ * speed is read from the jet, which evaluates R too). */
+static int curve_setup(struct canal *c, const struct canal_cfg *cfg, cp_real *size_out)
 {
     cp_real size = CP_R(0.0);
     int err = copy_params(c->cp, 8u, cfg->cp, curve_nparams[cfg->curve], first_angle(cfg->curve),
@@ -277,6 +279,7 @@ static int curve_setup(struct canal *c, const struct canal_cfg *cfg)
     if (c->curve == CANAL_BEZIER) {
         c->cmin = bezier_min_speed(c);
     }
+    *size_out = size;
     if (!(c->cmin > CP_R(1e-5) * size) || !(c->cmin > CP_R(1e-9))) {
         return CP_ERR_DEGENERATE;
     }
@@ -287,6 +290,7 @@ static int curve_setup(struct canal *c, const struct canal_cfg *cfg)
 CP_NOINLINE int canal_curve_check(const struct canal_cfg *cfg)
 {
     struct canal c;
+    cp_real size;
     unsigned i;
     if (cfg == NULL || cfg->curve > CANAL_BEZIER) {
         return CP_ERR_INVAL;
@@ -295,7 +299,7 @@ CP_NOINLINE int canal_curve_check(const struct canal_cfg *cfg)
     for (i = 0; i < 4u; i++) {
         c.rp[i] = i == 0u ? CP_R(1.0) : CP_R(0.0);
     }
-    return curve_setup(&c, cfg);
+    return curve_setup(&c, cfg, &size);
 }
 
 int canal_radius_check(const struct canal_cfg *cfg)
@@ -307,14 +311,37 @@ int canal_radius_check(const struct canal_cfg *cfg)
     return law_params(&c, cfg);
 }
 
+/* canal_init, last step: on a closed C (end point within RASTER_SEAM_GAP x size of the
+ * start) R, dR/ds and d2R/ds2 (per arc length: the frame's p and dpds) at both ends go to
+ * raster_seam_check, length scale the larger of size and max R. (Not inlined: its two
+ * jets and frames stay out of the frame of canal_path_init, on the worst stack path.) */
+static CP_NOINLINE int seam_check(const struct canal *c, cp_real size)
+{
+    struct canal_jet j0, j1;
+    struct canal_frame f0, f1;
+    cp_real dx, dy;
+    canal_jet(c, c->t0, &j0);
+    canal_jet(c, c->t1, &j1);
+    dx = j1.x - j0.x;
+    dy = j1.y - j0.y;
+    if (!(cp_sqrt(dx * dx + dy * dy) <= RASTER_SEAM_GAP * size)) {
+        return CP_OK; /* open: its ends may have any R */
+    }
+    canal_frame(&j0, &f0);
+    canal_frame(&j1, &f1);
+    return raster_seam_check(f0.r, f0.p, f0.dpds, f1.r, f1.p, f1.dpds,
+                             size > c->rmax ? size : c->rmax);
+}
+
 int canal_init(struct canal *c, const struct canal_cfg *cfg)
 {
+    cp_real size = CP_R(0.0);
     int law, err;
     if (c == NULL || cfg == NULL || cfg->curve > CANAL_BEZIER || cfg->radius > CANAL_R_CUBIC) {
         return CP_ERR_INVAL;
     }
     law = law_params(c, cfg);
-    err = curve_setup(c, cfg);
+    err = curve_setup(c, cfg, &size);
     if (law == CP_ERR_NONFINITE || (err == CP_OK && law != CP_OK)) {
         return law; /* NONFINITE anywhere first, then the curve's checks, then the law's */
     }
@@ -338,7 +365,7 @@ int canal_init(struct canal *c, const struct canal_cfg *cfg)
     if (!(c->rmin > CP_R(0.0))) {
         return CP_ERR_RADIUS;
     }
-    return CP_OK;
+    return seam_check(c, size);
 }
 
 /* The jet; second = 0 skips the second derivatives where they cost (they are then

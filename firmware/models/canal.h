@@ -118,8 +118,22 @@ struct canal_point {
  *   CP_ERR_DEGENERATE  C'(t) = 0 somewhere (LINE with P0 == P1, BEZIER with a cusp or
  *                      coincident control points): min |C'| <= 1e-5 of the curve's size
  *   CP_ERR_RADIUS      R(t) <= 0 somewhere on [t0, t1] (exact minimum, not sampled)
+ *   CP_ERR_SEAM        C is closed and R does not close: R or dR/ds (per arc length of C)
+ *                      differs at the seam beyond raster.h's tolerances. C is closed when
+ *                      |C(t1) - C(t0)| <= RASTER_SEAM_GAP (1e-5) x its size (ARC: r,
+ *                      ELLIPSE: max(A, B), BEZIER: the larger side of the control points'
+ *                      box): an ARC or ELLIPSE of 360 degrees, a BEZIER with P3 = P0 (a
+ *                      LINE never). raster_seam_check(R(t0), dR/ds(t0), R(t1), dR/ds(t1),
+ *                      max(size, rmax)): |jump of R| <= 1e-5 max(size, rmax)(1 + |dR/ds|
+ *                      at both ends), |jump of dR/ds| <= 1e-3 (1 + both |dR/ds|). So a COS
+ *                      law on a 360 degree ARC or ELLIPSE closes for an integer k only (b
+ *                      != 0), a LINEAR law only with r0 = r1, a CUBIC law on a closed
+ *                      BEZIER when r0 = r3 and the ends' slopes 3 (r1 - r0)/|C'(0)| and
+ *                      3 (r3 - r2)/|C'(1)| agree. A closed C with a tangent corner at the
+ *                      seam (a BEZIER with P3 = P0 whose end tangents differ) is the user's
+ *                      geometry and is allowed; R must still close there.
  * Order: NONFINITE anywhere first, then the curve's checks (canal_curve_check), then the
- * law's (canal_radius_check), then RADIUS. Returns CP_OK. */
+ * law's (canal_radius_check), then RADIUS, then SEAM. Returns CP_OK. */
 CP_MUST_CHECK int canal_init(struct canal *c, const struct canal_cfg *cfg);
 
 /* The checks of canal_init that need the curve alone (cfg->curve, cp; the law is not

@@ -294,6 +294,37 @@ int gsr_fn_check(const cp_real *fn, unsigned i)
     return err;
 }
 
+/* gsr_init, last step: on a closed centre (|C(t1) - C(t0)| <= RASTER_SEAM_GAP d1) f_N and
+ * f_B must close in value and in slope per arc length of the centre, d/ds = (d/du) / ts
+ * (raster_seam_check, no second derivatives; where ts = 0 at an end the slopes are not
+ * compared: 0 at both ends). Length scale: the larger of d1 and rmax. */
+static CP_NOINLINE int seam_check(const struct gsr *g)
+{
+    struct gsr_sec e[2];
+    struct cp_vec3 gap;
+    cp_real inv[2], len = g->d1 > g->rmax ? g->d1 : g->rmax;
+    unsigned i;
+    int err;
+    for (i = 0; i < 2u; i++) {
+        (void)sec_eval(g, (cp_real)i, &e[i]); /* both were samples of gsr_init: CP_OK */
+        inv[i] = e[i].ts > CP_R(0.0) ? CP_R(1.0) / e[i].ts : CP_R(0.0);
+    }
+    cp_v3_sub(&e[1].c, &e[0].c, &gap);
+    if (!(cp_sqrt(cp_v3_dot(&gap, &gap)) <= RASTER_SEAM_GAP * g->d1)) {
+        return CP_OK; /* open */
+    }
+    if (inv[0] == CP_R(0.0) || inv[1] == CP_R(0.0)) {
+        inv[0] = inv[1] = CP_R(0.0);
+    }
+    err = raster_seam_check(e[0].fn, e[0].dfn * inv[0], CP_R(0.0), e[1].fn, e[1].dfn * inv[1],
+                            CP_R(0.0), len);
+    if (err == CP_OK) {
+        err = raster_seam_check(e[0].fb, e[0].dfb * inv[0], CP_R(0.0), e[1].fb,
+                                e[1].dfb * inv[1], CP_R(0.0), len);
+    }
+    return err;
+}
+
 int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
 {
     cp_real a[4u * 3u]; /* sfun's output (stride 3): f_t(0), f_t(1) */
@@ -375,7 +406,7 @@ int gsr_init(struct gsr *g, const struct gsr_cfg *cf)
         bp = s.b;
     }
     g->rmax = rmax;
-    return worst * rmax <= GSR_RMF_TOL ? CP_OK : CP_ERR_TOL;
+    return worst * rmax <= GSR_RMF_TOL ? seam_check(g) : CP_ERR_TOL;
 }
 
 void gsr_section(const struct gsr *g, cp_real u, struct gsr_sec *s)

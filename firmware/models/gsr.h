@@ -174,6 +174,16 @@ struct gsr_sec {
  *   CP_ERR_FOLD        the sweep folds somewhere on a full section: 1 - k.(G - C) <= 0,
  *                      i.e. (k1 f_N)^2 + (k2 f_B)^2 >= 1 at a sample
  *   CP_ERR_NUMERIC     a non-finite value appeared
+ *   CP_ERR_SEAM        the centre is closed and f_N or f_B does not close (checked last).
+ *                      Closed: |C(f_t(1)) - C(f_t(0))| <= RASTER_SEAM_GAP (1e-5) x d1 (the
+ *                      bound of |C'|, mm, at least the centre's length). Then f_N and f_B,
+ *                      and their slopes per arc length of the centre (f' / ts), go to
+ *                      raster_seam_check (raster.h: value within 1e-5 max(d1, rmax) (1 + the
+ *                      slopes), slope within 1e-4 (1 + the slopes)). Where ts = 0 at an end
+ *                      (f_t' = 0) only the values are compared. A corner of the centre at the
+ *                      seam is allowed. Not checked: the FRAME at the seam (an RMF need not
+ *                      return to its start, so an elliptic section f_N != f_B may turn there;
+ *                      FIXED, FRENET and N0 follow the tangent and close with it).
  * Samples: u = k / GSR_SAMPLES, k = 0..GSR_SAMPLES (the raster walk of gsr_path_init
  * checks every streamed point and midpoint again). */
 CP_MUST_CHECK int gsr_init(struct gsr *g, const struct gsr_cfg *cfg);

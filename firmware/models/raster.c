@@ -117,3 +117,15 @@ int raster_fit_update(struct raster_fit *f, const cp_real *sag)
     f->round++;
     return res;
 }
+
+int raster_seam_check(cp_real v0, cp_real d0, cp_real dd0, cp_real v1, cp_real d1,
+                      cp_real dd1, cp_real len)
+{
+    cp_real w = CP_R(1.0) + cp_fabs(d0) + cp_fabs(d1), pos = RASTER_SEAM_VALUE * len;
+    /* (a NaN fails both comparisons) */
+    if (!(cp_fabs(v1 - v0) <= pos * w) ||
+        !(cp_fabs(d1 - d0) <= RASTER_SEAM_SLOPE * w + pos * (cp_fabs(dd0) + cp_fabs(dd1)))) {
+        return CP_ERR_SEAM;
+    }
+    return CP_OK;
+}

@@ -231,4 +231,48 @@ void raster_fit_begin(struct raster_fit *f, const struct raster_cfg *c,
  * A NaN sagitta is not verified (its estimate: the maximum with clamp, else CP_ERR_TOL). */
 int raster_fit_update(struct raster_fit *f, const cp_real *sag);
 
+/* ---- closed curves: the seam (issue 22) ----
+ *
+ * A curve CLOSES when its end point equals its start point: |C(end) - C(start)| <=
+ * RASTER_SEAM_GAP x the curve's size (its largest extent or radius, mm), the same relative
+ * test for every model (an ARC or ELLIPSE of 360 degrees, a Bezier with P3 = P0, a closed
+ * spine or guide; an ARC of 360 degrees is closed by construction, the test only absorbs
+ * the rounding of its end angles). Only the position is required: a closed curve whose
+ * tangents differ at the seam (a corner) is the user's geometry and is allowed; its laws
+ * must still close.
+ *
+ * On a closed curve every law that sets the size of the section at a point (the canal's
+ * and the spine's radius R, GSR's f_N and f_B, the channel's a, b and exponent) must close
+ * too, or the streamed surface steps or creases at the seam: the model's init compares the
+ * law's value v and its slope d = dv/ds PER ARC LENGTH s of the curve (not per parameter:
+ * a parameter's speed may differ at the two ends) at the start (v0, d0) and at the end
+ * (v1, d1) with raster_seam_check, and refuses the job with CP_ERR_SEAM before the first
+ * point. An open curve is never compared (its ends may have any values). */
+
+/* Closed curve: end-point gap <= this x the curve's size. */
+#define RASTER_SEAM_GAP CP_R(1.0e-5)
+/* The ends of a closed curve are known to within RASTER_SEAM_VALUE x len (mm): the rounding
+ * of their parameters (float ARC/ELLIPSE end angles up to 4 pi, COS laws up to k = 64) and
+ * the gap RASTER_SEAM_GAP allows. A law moves by its slope (and its slope by its second
+ * derivative) times that, so the tolerances carry those terms:
+ *   value closes: |v1 - v0| <= RASTER_SEAM_VALUE len (1 + |d0| + |d1|)
+ *   slope closes: |d1 - d0| <= RASTER_SEAM_SLOPE (1 + |d0| + |d1|)
+ *                               + RASTER_SEAM_VALUE len (|dd0| + |dd1|)
+ * d is the tangent of the angle at which the section grows along the curve, so the slope
+ * tolerance is a crease of about 0.006 degrees for a gentle law. */
+#define RASTER_SEAM_VALUE CP_R(1.0e-5)
+#define RASTER_SEAM_SLOPE CP_R(1.0e-4)
+
+/* Does a law close at the seam of a closed curve? At the start of the curve: v0 the law's
+ * value (mm), d0 its slope dv/ds (mm per mm of arc length s of the curve), dd0 its second
+ * derivative d2v/ds2 (1/mm; 0 when the model does not have it: then the slope test has no
+ * allowance for the rounding of the ends); v1, d1, dd1 the same at the end; len > 0 the
+ * length scale of the job, mm (the larger of the curve's size and the law's largest
+ * value). Returns CP_OK when the value and the slope close within the tolerances above,
+ * else CP_ERR_SEAM (a NaN anywhere: CP_ERR_SEAM). Plain numbers, no model: each model's
+ * init calls it once per law on a closed curve (canal: R; GSR: f_N, f_B; channel: a, b, n;
+ * the spine: R). */
+CP_MUST_CHECK int raster_seam_check(cp_real v0, cp_real d0, cp_real dd0, cp_real v1, cp_real d1,
+                                    cp_real dd1, cp_real len);
+
 #endif /* RASTER_H */

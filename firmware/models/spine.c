@@ -237,19 +237,27 @@ static void sp_power(cp_real *p, int stride)
 }
 
 /* |c_u| > 0, R > 0 and |a| < 1 on the nodes u = k / N and on u = k / SPINE_CHECK_N; the
- * largest R in *rmax */
-static int sp_samples(struct spine *s, cp_real scale, cp_real *rmax)
+ * largest R in *rmax, the spine's extent max |c(u) - c(0)| over the samples in *ext */
+static int sp_samples(struct spine *s, cp_real scale, cp_real *rmax, cp_real *ext)
 {
     uint32_t k, nn = s->nsteps, nall = nn + 1u + SPINE_CHECK_N + 1u;
     cp_real rmin = CP_R(1e30);
+    struct cp_vec3 c0 = {CP_R(0.0), CP_R(0.0), CP_R(0.0)}, dc;
     int bad_r = 0, bad_a = 0;
     *rmax = CP_R(0.0);
+    *ext = CP_R(0.0);
     for (k = 0; k < nall; k++) {
         struct spine_jet j;
         cp_real v, a;
         cp_real u = k <= nn ? (cp_real)k / (cp_real)nn
                             : (cp_real)(k - nn - 1u) / (cp_real)SPINE_CHECK_N;
         spine_jet(s, u, &j);
+        if (k == 0u) {
+            c0 = j.c;
+        }
+        cp_v3_sub(&j.c, &c0, &dc);
+        v = cp_v3_norm(&dc);
+        *ext = v > *ext ? v : *ext;
         v = cp_v3_norm(&j.cu);
         if (!(v > CP_R(1e-5) * (CP_R(1.0) + scale))) {
             return CP_ERR_DEGENERATE;
@@ -335,6 +343,31 @@ static int sp_axis_bezier(struct spine *s, const cp_real *p)
     return best >= SPINE_AXIS_MIN * SPINE_AXIS_MIN ? CP_OK : CP_ERR_DEGENERATE;
 }
 
+/* A closed spine (|c(1) - c(0)| <= RASTER_SEAM_GAP ext: an ARC of 2 pi, a HELIX of pitch 0
+ * and whole turns, a Bezier with P3 = P0) needs R to close (raster.h): R, a = dR/ds and
+ * da/ds at both ends to raster_seam_check, length scale max(ext, rmax). The RMF need not
+ * close (its holonomy): the family-2 lines then meet the seam at other labels, but the
+ * surface is whole. */
+static CP_NOINLINE int sp_seam(const struct spine *s, cp_real ext, cp_real rmax)
+{
+    struct spine_jet j[2];
+    cp_real a[2], as[2], v;
+    struct cp_vec3 d;
+    int e;
+    spine_jet(s, CP_R(0.0), &j[0]);
+    spine_jet(s, CP_R(1.0), &j[1]);
+    cp_v3_sub(&j[1].c, &j[0].c, &d);
+    if (!(cp_v3_norm(&d) <= RASTER_SEAM_GAP * ext)) {
+        return CP_OK; /* open: its ends may have any R */
+    }
+    for (e = 0; e < 2; e++) {
+        v = cp_v3_norm(&j[e].cu);
+        a[e] = j[e].ru / v;
+        as[e] = (j[e].ruu - a[e] * cp_v3_dot(&j[e].cu, &j[e].cuu) / v) / (v * v);
+    }
+    return raster_seam_check(j[0].r, a[0], as[0], j[1].r, a[1], as[1], ext > rmax ? ext : rmax);
+}
+
 /* N1(0) from ref (non-zero) or the principal normal; LINE: the axis is N1(0) itself. Then
  * z0 = (cos, sin)(phi0 / 2), phi0 the angle of N1(0) from P(0) towards Q(0). */
 static int sp_frame0(struct spine *s, const cp_real ref[3])
@@ -377,7 +410,7 @@ static void sp_restart(struct spine *s);
 
 int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps)
 {
-    cp_real scale = CP_R(0.0), rmax;
+    cp_real scale = CP_R(0.0), rmax, ext;
     int e, i;
     if (s == NULL || cfg == NULL || cfg->kind > SPINE_BEZIER || cfg->law > SPINE_R_CUBIC) {
         return CP_ERR_INVAL;
@@ -409,17 +442,20 @@ int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps)
         cp_real ctl[12];
         memcpy(ctl, s->sp, sizeof ctl);
         sp_power(s->sp, 3);
-        e = sp_samples(s, scale, &rmax);
+        e = sp_samples(s, scale, &rmax, &ext);
         if (e == CP_OK) {
             e = sp_axis_bezier(s, ctl);
         }
     } else {
-        e = sp_samples(s, scale, &rmax);
+        e = sp_samples(s, scale, &rmax, &ext);
     }
     if (e != CP_OK) {
         return e;
     }
     e = sp_frame0(s, cfg->ref);
+    if (e == CP_OK) {
+        e = sp_seam(s, ext, rmax);
+    }
     if (e != CP_OK) {
         return e;
     }

@@ -172,6 +172,9 @@ struct spine_label {
  *                      <= 1e-4 |ref| (ref along T(0))
  *   CP_ERR_FRENET      ref zero and the principal normal at u = 0 is <= 1e-4 |c_u|^2 (a LINE,
  *                      or a spine straight or inflecting at its start)
+ *   CP_ERR_SEAM        the spine closes (|c(1) - c(0)| <= RASTER_SEAM_GAP x its extent: an
+ *                      ARC of 2 pi, a HELIX of pitch 0 and whole turns, a Bezier with
+ *                      P3 = P0) and R or dR/ds does not (raster_seam_check, raster.h)
  * D != 0 (regularity, spine_regularity) is NOT checked here: it depends on the lines and the
  * tool offset, and is the iterator's check. Returns CP_OK. On error *s is unusable. */
 int spine_init(struct spine *s, const struct spine_cfg *cfg, uint16_t nsteps) CP_MUST_CHECK;

@@ -54,6 +54,7 @@ STATUS: dict[int, tuple[str, str]] = {
     43: ("DIALECT", "not in the machine's dialect"),
     44: ("MACHINE_RESET", "machine restarted"),
     45: ("ABOVE_SAFE", "point at or above SAFE"),
+    46: ("SEAM", "radius or section law jumps at the seam"),
 }
 
 #: NAME -> code
