@@ -667,6 +667,31 @@ static void call_spine_next(void)
     bench_sink = spine_path_next(&sp_it, &sp_pt);
 }
 
+/* a whole line (256 points after its first, from point 1 of line 0 or 259 of line 1):
+ * the march's steps are amortized as in a stream, so raw / 256 is the mean per point */
+static void setup_spine_helix_line(void)
+{
+    spine_setup(0, 1u);
+}
+
+static void setup_spine_helix_line_back(void)
+{
+    spine_setup(0, 259u);
+}
+
+static void setup_spine_bezier_line(void)
+{
+    spine_setup(1, 1u);
+}
+
+static void call_spine_line(void)
+{
+    uint32_t i;
+    for (i = 0; i < 256u; i++) {
+        bench_sink = spine_path_next(&sp_it, &sp_pt);
+    }
+}
+
 /* the node state of the helix at u = 100/256, the label made once: what a second line at
  * the same node costs (spine_point_label; the label's cp_sincos is per line, once) */
 static void setup_spine_extra(void)
@@ -765,6 +790,9 @@ static const struct bench_case cases[] = {
     {"spine_pt_helix_cos_back", setup_spine_helix_back, call_spine_next},
     {"spine_pt_bezier_cubic", setup_spine_bezier_fwd, call_spine_next},
     {"spine_point_extra_line", setup_spine_extra, call_spine_extra},
+    {"spine_line_helix_cos_x256", setup_spine_helix_line, call_spine_line},
+    {"spine_line_helix_back_x256", setup_spine_helix_line_back, call_spine_line},
+    {"spine_line_bezier_x256", setup_spine_bezier_line, call_spine_line},
     {"spine_jet_bezier_cubic", setup_spine_eval_bezier, call_spine_jet},
     {"spine_jet_helix_cos", setup_spine_eval_helix, call_spine_jet},
     {"spine_eval_bezier_cubic", setup_spine_eval_bezier, call_spine_eval},
