@@ -725,6 +725,17 @@ static const struct raster_rule gsr_rule = {.aim = SAG_MARGIN, .accept = SAG_MAR
                                             .pilot = 0u, .grow_shift = RASTER_GROW_BY_ONE, .clamp = 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
+/* raster_overlap_check's ball of the section at u: the centre point and the larger
+ * semi-axis (the ellipse lies within it). */
+static int gsr_ball(const void *ctx, cp_real u, struct cp_vec3 *c, cp_real *r)
+{
+    struct gsr_sec s;
+    int err = sec_eval((const struct gsr *)ctx, u, &s);
+    *c = s.c;
+    *r = s.fn > s.fb ? s.fn : s.fb;
+    return err;
+}
+
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)
 {
     struct raster_fit fit;
@@ -766,6 +777,10 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
+    }
+    if (err == CP_OK) { /* the tool is outside: it sweeps 2 r beyond the surface */
+        struct raster_overlap o;
+        err = raster_overlap_check(gsr_ball, &it->g, CP_R(2.0) * it->tool_r, &o);
     }
     if (err != CP_OK) {
         it->head.count = 0;
