@@ -88,16 +88,22 @@ static void tx_u32(struct proto *p, uint32_t v)
     p->tx_len = (uint16_t)pos;
 }
 
+/* "error:<code> <text>", the head of every error reply (a cause may follow). */
+static void tx_error(struct proto *p, int code)
+{
+    tx_str(p, "error:");
+    tx_u32(p, (uint32_t)code);
+    tx_str(p, " ");
+    tx_str(p, cp_status_text(code));
+}
+
 static void reply_status(struct proto *p, int code)
 {
     if (code == CP_ST_OK) {
         tx_str(p, "ok\n");
         return;
     }
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
-    tx_str(p, " ");
-    tx_str(p, cp_status_text(code));
+    tx_error(p, code);
     tx_str(p, "\n");
 }
 
@@ -127,10 +133,7 @@ static void reply_command(struct proto *p, int code)
     while (kw < p->line_len && kw < PARSE_KW_MAX && p->line[kw] != ' ') {
         kw++;
     }
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
-    tx_str(p, " ");
-    tx_str(p, cp_status_text(code));
+    tx_error(p, code);
     tx_str(p, " (");
     tx_mem(p, p->line, kw);
     if (j->cause_len != 0u && (size_t)j->cause_st + j->cause_len <= p->line_len) {
@@ -229,10 +232,7 @@ static void run_finish(struct proto *p, int status)
     p->tx_len = (uint16_t)(p->tx_len + n);
     if (p->fault_len > 0u && (status == CP_ST_PEER_ERROR || status == CP_ST_MACHINE_RESET)) {
         /* "error:19 machine reported an error (machine ALARM:9)" */
-        tx_str(p, "error:");
-        tx_u32(p, (uint32_t)status);
-        tx_str(p, " ");
-        tx_str(p, cp_status_text(status));
+        tx_error(p, status);
         tx_str(p, " (machine ");
         tx_mem(p, p->fault, p->fault_len);
         tx_str(p, ")\n");
