@@ -605,14 +605,24 @@ int canal_path_check_begin(struct canal_path *tp, const struct canal_cfg *surf,
 }
 
 /* Work units of one unit of the current phase (canal_path.h: a jet, or a label or point
- * checked): a grid step's marches (2 jets per panel; substeps panels per node, twice that
- * per sagitta step) and its labels (LINES: the n lines' label and 3 points each), a link
- * pair's labels and probes. At least 1 unit of the phase per step. */
+ * checked): SAG a grid step's marches (2 jets per panel, twice substeps panels) and its
+ * lines (LINES: the n lines' label and 3 points each); NODES a node's march, its two
+ * bounds and a circle's probes (2 units each: the rotation and the regularity); LINK a
+ * march step or a pair's labels and probes (counted as both). At least 1 unit of the
+ * phase per step. */
 static uint32_t units_per_step(const struct canal_path *tp, const struct canal_check *c)
 {
-    uint32_t m = tp->substeps, cost = 2u * m + LINK_PROBES + 4u; /* NODES, LINK */
-    if (c->phase == CANAL_CHECK_SAG) {
+    uint32_t m = tp->substeps, probes = 2u * (LINK_PROBES + 1u), cost;
+    switch ((enum canal_check_phase)c->phase) {
+    case CANAL_CHECK_SAG:
         cost = 4u * m + 4u * (tp->head.mode == RASTER_LINES ? tp->head.n : 2u);
+        break;
+    case CANAL_CHECK_NODES:
+        cost = 2u * m + 4u + probes;
+        break;
+    default: /* CANAL_CHECK_LINK */
+        cost = 2u * m + 2u + probes;
+        break;
     }
     return cost >= CANAL_CHECK_WORK ? 1u : CANAL_CHECK_WORK / cost;
 }
