@@ -11,9 +11,10 @@
  * pending. Per job (its command lines, then RUN):
  *
  *   gap     the largest span between two consecutive read() calls, from the read that
- *           brought RUN up to the poll after the check ended (the stream's first item
- *           sent, or RUN's error): every slice of the check, the parsing and the check's
- *           begin (canal_init) included. Limit: POLLGAP_LIMIT instructions.
+ *           brought RUN up to POLLGAP_AFTER polls after the check ended (the stream's
+ *           first items, or RUN's error): every slice of the check, the parsing, the
+ *           check's begin (canal_init) and RESUME's first point included. Limit:
+ *           POLLGAP_LIMIT instructions.
  *   answer  '?' fed in the middle of the check (after POLLGAP_ASK_AT polls): the span from
  *           the read() that took it to the write() that sent "<Check|...>" (which must
  *           come, and within the gap's limit).
@@ -37,12 +38,17 @@
 #endif
 /* '?' or Ctrl-X is fed after this many polls of the check. */
 #define POLLGAP_ASK_AT 3u
+/* Polls measured after the check (the start of the stream: its lead items and first
+ * points, RESUME's march to its first point included). */
+#define POLLGAP_AFTER 8u
 /* Polls of one RUN at most (a check of the largest job below takes a few thousand). */
 #define POLLGAP_POLLS_MAX 2000000u
 
 struct pg_job {
     const char *name;
-    const char *const *lines; /* protocol command lines, NULL-terminated (RUN is added) */
+    const char *const *lines; /* protocol command lines, NULL-terminated */
+    const char *run;          /* the run command: "RUN" or "RESUME k" */
+    int held;                 /* 1: held to POLLGAP_LIMIT; 0: measured and reported only */
 };
 
 /* The paper's example as host_sim judges it: 8 lines, 2 um. */
@@ -54,6 +60,12 @@ static const char *const job_ellipse[] = {"CURVE ELLIPSE 0 0 40 30 0 300", "RADI
 /* The most lines and the most steps, given: one walk of 256 x 4096. */
 static const char *const job_max[] = {"CURVE ARC 0 0 30 0 300", "RADIUS COS 1 8 2",
                                       "LINES 256 -60 60", "STEPS 4096", "FORMAT FRAMES", NULL};
+/* An ellipse's line of the most steps, given, resumed near its end: RESUME's first point
+ * marches Lambda from t0 to the point at once, in one poll after the check (up to steps x
+ * substeps panels). Not sliced: the canal image has no flash room for it (issue 22's
+ * note in README.md), so this row is measured and reported, not held to the limit. */
+static const char *const job_resume[] = {"CURVE ELLIPSE 0 0 40 30 0 300", "RADIUS LINEAR 4 6",
+                                         "LINES 2 -40 40", "STEPS 4096", "FORMAT FRAMES", NULL};
 /* A Bezier with a ball tool, characteristic circles between two lines, 256 circles. */
 static const char *const job_circles[] = {"CURVE BEZIER 0 0 20 40 60 -40 80 0",
                                           "RADIUS CUBIC 3 4 4 3", "TOOL BALL 1",
@@ -61,10 +73,11 @@ static const char *const job_circles[] = {"CURVE BEZIER 0 0 20 40 60 -40 80 0",
                                           NULL};
 
 static const struct pg_job jobs[] = {
-    {"paper_lines8_tol2", job_paper},
-    {"ellipse_lines256_tol1", job_ellipse},
-    {"arc_lines256_steps4096", job_max},
-    {"bezier_tool_circles256", job_circles},
+    {"paper_lines8_tol2", job_paper, "RUN", 1},
+    {"ellipse_lines256_tol1", job_ellipse, "RUN", 1},
+    {"arc_lines256_steps4096", job_max, "RUN", 1},
+    {"bezier_tool_circles256", job_circles, "RUN", 1},
+    {"ellipse_steps4096_resume", job_resume, "RESUME 4000", 0},
 };
 #define N_JOBS (sizeof jobs / sizeof jobs[0])
 
@@ -197,7 +210,7 @@ static int load(const struct pg_job *pj)
  * expect an answer starting with `expect`. Polls until the check is over and one more
  * poll has run (the first stream item, or the reply, is then written). Returns the
  * polls of the check (0: it never started). */
-static uint32_t run(uint8_t byte, const char *expect)
+static uint32_t run(const char *cmd, uint8_t byte, const char *expect)
 {
     uint32_t polls = 0, i;
     gap_max = 0u;
@@ -206,7 +219,8 @@ static uint32_t run(uint8_t byte, const char *expect)
     answered = 0;
     answer = expect;
     answer_insns = 0u;
-    (void)hal_mem_feed_str(&mem, "RUN\n");
+    (void)hal_mem_feed_str(&mem, cmd);
+    (void)hal_mem_feed_str(&mem, "\n");
     t_read = MPS2_TIMER0_VALUE;
     measuring = 0;
     (void)proto_poll(&engine); /* reads RUN: the first span counted starts here */
@@ -221,8 +235,9 @@ static uint32_t run(uint8_t byte, const char *expect)
         (void)proto_poll(&engine);
         polls++;
     }
-    (void)proto_poll(&engine); /* the span from the check's last slice to the next read */
-    (void)proto_poll(&engine);
+    for (i = 0; i < POLLGAP_AFTER; i++) { /* the check's end, the stream's first items */
+        (void)proto_poll(&engine);
+    }
     measuring = 0;
     return polls;
 }
@@ -251,15 +266,17 @@ int main(void)
             print(l ? " | " : " ");
             print(jobs[i].lines[l]);
         }
+        print(" | ");
+        print(jobs[i].run);
         print("\n");
         /* 1. the gap, and '?' answered in the middle of the check */
         if (load(&jobs[i]) != 0) {
             failed++;
             continue;
         }
-        polls = run('?', "<Check|");
+        polls = run(jobs[i].run, '?', "<Check|");
         gap = gap_max;
-        ok = polls > POLLGAP_ASK_AT && gap <= POLLGAP_LIMIT && answered &&
+        ok = polls > POLLGAP_ASK_AT && (gap <= POLLGAP_LIMIT || !jobs[i].held) && answered &&
              answer_insns <= POLLGAP_LIMIT && engine.path.info.count > 0u;
         print("  check: ");
         print_u32(polls);
@@ -275,7 +292,8 @@ int main(void)
         print_u32(gap);
         print(" (");
         print_ms168(gap);
-        print(" ms)\n  '?' answered after ");
+        print(jobs[i].held ? " ms)" : " ms; not held to the limit: RESUME's first point)");
+        print("\n  '?' answered after ");
         print_u32(answer_insns);
         print(" (");
         print_ms168(answer_insns);
@@ -292,13 +310,13 @@ int main(void)
             }
         }
         print("\n");
-        worst = gap > worst ? gap : worst;
+        worst = jobs[i].held && gap > worst ? gap : worst;
         /* 2. Ctrl-X cancels the check; then the engine is idle */
         if (load(&jobs[i]) != 0) {
             failed++;
             continue;
         }
-        (void)run(0x18u, "error:20");
+        (void)run(jobs[i].run, 0x18u, "error:20");
         {
             uint32_t cancel = answer_insns;
             int cancelled = answered && engine.state == PROTO_IDLE;
@@ -318,7 +336,7 @@ int main(void)
         passed += ok;
         failed += !ok;
     }
-    print("pollgap: worst gap ");
+    print("pollgap: worst gap of the held jobs ");
     print_u32(worst);
     print(" instructions (");
     print_ms168(worst);

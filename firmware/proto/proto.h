@@ -14,7 +14,11 @@
  * '?' status report, '!' feed hold, '~' resume, 0x18 abort ('!', '~', 0x18 also go to a
  * grbl on the machine link, whose own real-time bytes they are).
  *
- * RUN validates the job (path_init) and streams it:
+ * RUN validates the job and streams it. The validation (path_check_begin, then one
+ * path_check_step per proto_poll: state PROTO_CHECK) runs in slices so that the link is
+ * read between them: '?' answers "<Check|W:w|S:i/m>", 0x18 cancels it (error:20); only
+ * real-time bytes at the head of the host's bytes are read meanwhile (the next lines wait
+ * in order). Then the stream:
  *   GCODE   a complete program for the job's MACHINE dialect (out_gcode.h) down the
  *           LINK: the machine link (two links: "[RUN:...]" and the final reply go to
  *           the host, the program and nothing else to the machine) or the host link (a
