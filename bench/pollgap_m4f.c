@@ -26,6 +26,7 @@
  */
 #include <string.h>
 
+#include "bench_print.h"
 #include "fmt.h"
 #include "hal_mem.h"
 #include "mps2.h"
@@ -97,11 +98,6 @@ static uint32_t answer_insns;/* read of the byte -> write() of its answer */
 static const char *answer;   /* the answer's start ("<Check|", "error:20") */
 static int answered;
 
-static uint32_t ticks_to_insns(uint32_t t0, uint32_t t1)
-{
-    return ((t0 - t1) * 40u + 64u) / 128u; /* down-counter; 25 MHz vs 2^7 ns/insn */
-}
-
 static int port_read(void *ctx, uint8_t *buf, size_t cap)
 {
     uint32_t t = MPS2_TIMER0_VALUE, gap = ticks_to_insns(t_read, t);
@@ -135,21 +131,6 @@ static uint32_t port_now(void *ctx)
 {
     (void)ctx;
     return hal_uart_now_ms(&mem_uart);
-}
-
-/* ---- output ---- */
-static void print(const char *s)
-{
-    semihost_write0(s);
-}
-
-static void print_u32(uint32_t v)
-{
-    char b[12];
-    size_t pos = 0;
-    (void)fmt_u32(b, sizeof b - 1u, &pos, v);
-    b[pos] = '\0';
-    print(b);
 }
 
 /* v instructions as ms at 168 MHz, 2 decimals */

@@ -47,11 +47,11 @@ maxpoint: $(M4F)/maxpoint.elf
 	      echo "maxpoint: 0 passed, 1 failed"; exit 1; }; \
 	exit $$(cat $(M4F)/maxpoint.rc1)
 
-$(M4F)/maxpoint.elf: $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F_SEMI_OBJ) \
+$(M4F)/maxpoint.elf: $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F)/bench/bench_print.o $(M4F_SEMI_OBJ) \
                      linker/mps2_an386_test.ld linker/cortex_m_common.ld
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
 	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
-	    $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F_SEMI_OBJ) -lm
+	    $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F)/bench/bench_print.o $(M4F_SEMI_OBJ) -lm
 
 ## pollgap: the worst gap between two reads of the host link during RUN's check (<= 1 M
 ##          instructions) and '?' / Ctrl-X acting within it, on QEMU, run twice (word "pollgap")
@@ -72,11 +72,13 @@ pollgap: $(M4F)/pollgap.elf
 	      echo "pollgap: 0 passed, 1 failed"; exit 1; }; \
 	exit $$(cat $(M4F)/pollgap.rc1)
 
-$(M4F)/pollgap.elf: $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
+$(M4F)/pollgap.elf: $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/bench/bench_print.o \
+                    $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
                     linker/mps2_an386_test.ld linker/cortex_m_common.ld
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
 	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
-	    $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
+	    $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/bench/bench_print.o $(M4F)/tests/hal_mem.o \
+	    $(M4F_SEMI_OBJ) -lm
 
 ## stack-soak: painted stack of fw.elf after soak-like sessions + fuzz corpus replay vs `make stack` (word "stack-soak")
 stack-soak: $(M4F)/fw.elf $(BUILD)/host/host_sim

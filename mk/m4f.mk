@@ -319,11 +319,12 @@ bench: $(M4F)/bench.elf
 	    echo "bench: 2 QEMU runs, identical counts"; \
 	else echo "bench: runs DIFFER:"; diff $(M4F)/bench.run1 $(M4F)/bench.run2; exit 1; fi
 
-$(M4F)/bench.elf: $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/frenet.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
+$(M4F)/bench.elf: $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/bench_print.o $(M4F)/bench/frenet.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
                   linker/mps2_an386_test.ld linker/cortex_m_common.ld
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
 	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
-	    $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/frenet.o $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
+	    $(M4F_FW_OBJ) $(M4F)/bench/bench_m4f.o $(M4F)/bench/bench_print.o $(M4F)/bench/frenet.o \
+	    $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) -lm
 
 ## bench-host: the same routines natively, instructions per call by valgrind callgrind
 bench-host: $(BUILD)/host/bench_host
