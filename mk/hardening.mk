@@ -55,7 +55,7 @@ $(M4F)/maxpoint.elf: $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F)/bench/benc
 
 ## pollgap: the worst gap between two reads of the host link during RUN's check (<= 1 M
 ##          instructions) and '?' / Ctrl-X acting within it, on QEMU, run twice (word "pollgap")
-# (timeout 600 per QEMU run: one run takes about N s unloaded, 2026-11-27; >= 5x. The counts
+# (timeout 600 per QEMU run: one run takes about 6 s unloaded, 2026-11-27; >= 5x. The counts
 # are -icount instructions, not wall-clock.)
 pollgap: $(M4F)/pollgap.elf
 	$(Q)for i in 1 2; do \

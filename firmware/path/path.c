@@ -65,7 +65,7 @@ int path_check_step(struct path *p, struct path_check *c, const struct raster_cf
         if (err == CANAL_CHECK_MORE) {
             return PATH_CHECK_MORE;
         }
-    } else {
+    } else { /* the others: the whole init (the canal's row is not taken here) */
         switch (p->kind) {
 #define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : PATH_INIT_ROW(name))
 #include "models.def"
