@@ -36,6 +36,7 @@
 #include <stdio.h>
 #include <valgrind/callgrind.h>
 #else
+#include "bench_print.h"
 #include "mps2.h"
 #include "semihost.h"
 #include "startup.h"
@@ -825,20 +826,6 @@ int main(void)
 
 #else /* QEMU mps2-an386 */
 
-static void print(const char *s)
-{
-    semihost_write0(s);
-}
-
-static void print_u32(uint32_t v)
-{
-    char b[12];
-    size_t pos = 0;
-    (void)fmt_u32(b, sizeof b - 1u, &pos, v);
-    b[pos] = '\0';
-    print(b);
-}
-
 static void print_padded(const char *s, size_t width)
 {
     size_t n = strlen(s);
@@ -857,7 +844,7 @@ static uint32_t measure(const struct bench_case *c)
     t0 = MPS2_TIMER0_VALUE;
     call();
     t1 = MPS2_TIMER0_VALUE;
-    return ((t0 - t1) * 40u + 64u) / 128u; /* down-counter; 25 MHz vs 2^7 ns/insn */
+    return ticks_to_insns(t0, t1);
 }
 
 int main(void)

@@ -24,6 +24,7 @@
  */
 #include <string.h>
 
+#include "bench_print.h"
 #include "fmt.h"
 #include "job.h"
 #include "mps2.h"
@@ -70,39 +71,6 @@ static struct canal_path tp;
 static struct raster_pt pt;
 static volatile int32_t sink;
 
-static void print(const char *s)
-{
-    semihost_write0(s);
-}
-
-static void print_u32(uint32_t v)
-{
-    char b[12];
-    size_t pos = 0;
-    (void)fmt_u32(b, sizeof b - 1u, &pos, v);
-    b[pos] = '\0';
-    print(b);
-}
-
-static void print_i32(int32_t v)
-{
-    char b[13];
-    size_t pos = 0;
-    (void)fmt_i32(b, sizeof b - 1u, &pos, v);
-    b[pos] = '\0';
-    print(b);
-}
-
-/* v / 10^dec with dec decimals */
-static void print_fixed(int32_t v, unsigned dec)
-{
-    char b[16];
-    size_t pos = 0;
-    (void)fmt_fixed(b, sizeof b - 1u, &pos, v, dec);
-    b[pos] = '\0';
-    print(b);
-}
-
 static void print_pad(const char *s, size_t w)
 {
     size_t n = strlen(s);
@@ -122,11 +90,6 @@ static void print_u32_pad(uint32_t v, size_t w)
         print(" ");
     }
     print(b);
-}
-
-static uint32_t ticks_to_insns(uint32_t t0, uint32_t t1)
-{
-    return ((t0 - t1) * 40u + 64u) / 128u; /* down-counter; 25 MHz vs 2^7 ns/insn */
 }
 
 static int call_empty(struct canal_path *t, struct raster_pt *p)

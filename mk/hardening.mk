@@ -10,13 +10,15 @@
 #               seeded random fault per session (host_sim/soak.sh)        word "soak"
 #   soak-quick  the same with a small fraction of the sessions (< 40 s)   word "soak"
 #   maxpoint    max/mean/min instructions per canal_path_next on QEMU       word "maxpoint"
+#   pollgap     the worst gap between two reads of the host link during RUN's check, '?'
+#               answered and Ctrl-X cancelling within it, on QEMU          word "pollgap"
 #   stack-soak  painted stack of fw.elf after soak-like sessions and the fuzz corpus
 #               replay, next to the static worst path of `make stack`    word "stack-soak"
 
 SOAK_SEED ?= 1
 NICE      ?= nice -n 5
 
-.PHONY: soak soak-quick maxpoint stack-soak
+.PHONY: soak soak-quick maxpoint pollgap stack-soak
 
 ##
 ## soak: >=1e6 native + >=1e5 QEMU points judged, seeded random drop/flip/dup/hang-up faults (word "soak")
@@ -45,11 +47,38 @@ maxpoint: $(M4F)/maxpoint.elf
 	      echo "maxpoint: 0 passed, 1 failed"; exit 1; }; \
 	exit $$(cat $(M4F)/maxpoint.rc1)
 
-$(M4F)/maxpoint.elf: $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F_SEMI_OBJ) \
+$(M4F)/maxpoint.elf: $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F)/bench/bench_print.o $(M4F_SEMI_OBJ) \
                      linker/mps2_an386_test.ld linker/cortex_m_common.ld
 	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
 	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
-	    $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F_SEMI_OBJ) -lm
+	    $(M4F_FW_OBJ) $(M4F)/bench/maxpoint_m4f.o $(M4F)/bench/bench_print.o $(M4F_SEMI_OBJ) -lm
+
+## pollgap: the worst gap between two reads of the host link during RUN's check (<= 1 M
+##          instructions) and '?' / Ctrl-X acting within it, on QEMU, run twice (word "pollgap")
+# (timeout 600 per QEMU run: one run takes about 6 s unloaded, 2026-11-27; >= 5x. The counts
+# are -icount instructions, not wall-clock.)
+pollgap: $(M4F)/pollgap.elf
+	$(Q)for i in 1 2; do \
+	    timeout 600 $(NICE) $(QEMU) -M mps2-an386 -display none -monitor none -serial null \
+	        -semihosting-config enable=on,target=native -icount shift=7 -kernel $< \
+	        > $(M4F)/pollgap.run$$i 2>&1; echo $$? > $(M4F)/pollgap.rc$$i; done; \
+	cat $(M4F)/pollgap.run1; \
+	if cmp -s $(M4F)/pollgap.run1 $(M4F)/pollgap.run2; then \
+	    echo "pollgap: 2 QEMU runs, identical counts"; \
+	else echo "pollgap: runs DIFFER:"; diff $(M4F)/pollgap.run1 $(M4F)/pollgap.run2; \
+	    echo "pollgap: 0 passed, 1 failed"; exit 1; fi; \
+	grep -q '^pollgap: [0-9]* passed, [0-9]* failed$$' $(M4F)/pollgap.run1 || \
+	    { echo "pollgap: no result line (qemu exit $$(cat $(M4F)/pollgap.rc1))"; \
+	      echo "pollgap: 0 passed, 1 failed"; exit 1; }; \
+	exit $$(cat $(M4F)/pollgap.rc1)
+
+$(M4F)/pollgap.elf: $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/bench/bench_print.o \
+                    $(M4F)/tests/hal_mem.o $(M4F_SEMI_OBJ) \
+                    linker/mps2_an386_test.ld linker/cortex_m_common.ld
+	$(Q)$(M4F_CC) $(M4F_LDFLAGS) -T mps2_an386_test.ld \
+	    -Wl,--defsym=CP_STACK=$(M4F_TEST_STACK) -Wl,-Map=$@.map -o $@ \
+	    $(M4F_FW_OBJ) $(M4F)/bench/pollgap_m4f.o $(M4F)/bench/bench_print.o $(M4F)/tests/hal_mem.o \
+	    $(M4F_SEMI_OBJ) -lm
 
 ## stack-soak: painted stack of fw.elf after soak-like sessions + fuzz corpus replay vs `make stack` (word "stack-soak")
 stack-soak: $(M4F)/fw.elf $(BUILD)/host/host_sim

@@ -45,6 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define PIECE_MAX 48u
 #define DRAIN_POLLS 40000 /* polls for a good machine to finish the run (~20 lines) */
+#define CHECK_POLLS 1000  /* polls for RUN's check of the job (a few slices) */
 
 static const char *const job[] = {"CURVE ARC 0 0 3 0 90",  "RADIUS COS 5.5 10.5 2",
                                   "LINES 2 -25 10",        "STEPS 2",
@@ -284,8 +285,12 @@ static void setup(int cs)
     }
     feed(&hm, "RUN\n", 4);
     g1_seen = g1_base = 0;
-    poll_n(8, 0);
-    if (eng.state == PROTO_IDLE) {
+    poll_n(1, 0); /* RUN: its check begins (PROTO_CHECK, one slice per poll) */
+    for (i = 0; i < CHECK_POLLS && eng.state == PROTO_CHECK; i++) {
+        poll_n(1, 0);
+    }
+    poll_n(8, 0); /* the first program lines */
+    if (eng.state == PROTO_IDLE || eng.state == PROTO_CHECK) {
         FAIL("RUN did not start");
     }
     snap[cs].g1_base = g1_seen; /* the G1 lines sent so far were checked; an input's count on */

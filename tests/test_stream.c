@@ -343,6 +343,75 @@ int test_stream_realtime(void)
     return 0;
 }
 
+/* A job whose check takes many slices (issue 22): 64 lines of an ellipse, 2 um. */
+static const char *const check_job[] = {
+    "CURVE ELLIPSE 0 0 40 30 0 300", "RADIUS LINEAR 4 6", "LINES 64 -40 40", "TOL 2",
+    "FEED 600 100", "SAFE 20", NULL};
+
+int test_stream_check(void)
+{
+    /* RUN checks the job in slices (PROTO_CHECK): '?' answers "<Check|W:w|S:i/m>" between
+     * them, Ctrl-X cancels the check with error:20 and leaves the engine idle with no path,
+     * and a line sent after RUN waits (in order) until the check has ended */
+    char l[160];
+    int i, polls, reports = 0, run_line = 0, info_after = 0;
+    uint32_t last_walk = 0u;
+    rig_init();
+    CHECK(load(check_job));
+    host_send("RUN\n");
+    (void)proto_poll(&rig.p);
+    CHECK(rig.p.state == PROTO_CHECK);
+    for (polls = 0; polls < 100000 && rig.p.state == PROTO_CHECK; polls++) {
+        if (polls % 4 == 1) {
+            host_send("?");
+        }
+        while (next_line(l, sizeof l, 1)) {
+            unsigned long w = 0, si = 0, sm = 0;
+            CHECK(sscanf(l, "<Check|W:%lu|S:%lu/%lu>", &w, &si, &sm) == 3);
+            CHECK(w >= last_walk && w >= 1u && si <= sm); /* walks go on, steps within */
+            last_walk = (uint32_t)w;
+            reports++;
+        }
+    }
+    CHECK(polls > 8 && reports > 2); /* many slices, the '?' answered between them */
+    CHECK(rig.p.state == PROTO_RUN);
+    host_send("\x18");
+    for (i = 0; i < 2000 && rig.p.state != PROTO_IDLE; i++) {
+        (void)proto_poll(&rig.p);
+    }
+    CHECK(rig.p.state == PROTO_IDLE);
+    /* Ctrl-X during a check */
+    rig_init();
+    CHECK(load(check_job));
+    host_send("RUN\n");
+    for (i = 0; i < 3; i++) {
+        (void)proto_poll(&rig.p);
+    }
+    CHECK(rig.p.state == PROTO_CHECK);
+    host_send("\x18");
+    CHECK(next_line(l, sizeof l, 4));
+    CHECK(strcmp(l, "error:20 aborted") == 0);
+    CHECK(rig.p.state == PROTO_IDLE && path_count(&rig.p.path) == 0u);
+    host_send("?");
+    CHECK(next_line(l, sizeof l, 4));
+    CHECK(strcmp(l, "<Idle>") == 0);
+    /* a line after RUN: answered after the check, i.e. after the run's [RUN:...] line */
+    host_send("RUN\n$I\n");
+    for (i = 0; i < 200 && next_line(l, sizeof l, 5000); i++) {
+        if (strncmp(l, "[RUN:", 5) == 0) {
+            run_line = 1;
+        }
+        if (strncmp(l, "[VER:", 5) == 0) {
+            info_after = run_line;
+            break;
+        }
+    }
+    CHECK(info_after);
+    TEST_NOTE("check in %d polls, %d <Check|...> reports, last walk %u\n", polls, reports,
+              (unsigned)last_walk);
+    return 0;
+}
+
 struct bad_vec {
     const char *line;
     int code;

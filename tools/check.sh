@@ -4,7 +4,7 @@
 # line). A step that exits non-zero without such a line counts as 1 failed.
 # SPDX-License-Identifier: MIT
 MAKE=${MAKE:-make}
-STEPS=${CHECK_STEPS:-"unit unit-double unit-asan fuzz-check guard-docs guard-readme guard-warn guard-fnlen guard-layers guard-alloc guard-double guard-stack guard-budget guard-images guard-selftest m4f-unit m4f-pty sim-native sim-qemu sim-robust sim-machine sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models sim-machines example-model sim-rs274 sim-pyserial py-test soak-quick stack-soak sim-asan"}
+STEPS=${CHECK_STEPS:-"unit unit-double unit-asan fuzz-check guard-docs guard-readme guard-warn guard-fnlen guard-layers guard-alloc guard-double guard-stack guard-budget guard-images guard-selftest m4f-unit m4f-pty pollgap sim-native sim-qemu sim-robust sim-machine sim-run-native sim-run-qemu sim-baud sim-faults sim-resume sim-identical sim-models sim-machines example-model sim-rs274 sim-pyserial py-test soak-quick stack-soak sim-asan"}
 LOG=${BUILD:-build}/check.log
 mkdir -p "$(dirname "$LOG")"
 : > "$LOG"

@@ -27,16 +27,12 @@
 #define LINK_PROBES 16u      /* probe spacing 1/16 along each link arc and circle */
 #define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
 
-struct quad {
-    cp_real lam, comp, g; /* Lambda, Kahan compensation, integrand at the current half-node */
-};
-
 static cp_real t_at(const struct canal_path *tp, uint32_t a, cp_real hp)
 {
     return tp->surf.t0 + (cp_real)a * hp;
 }
 
-static void kahan_add(struct quad *q, cp_real d)
+static void kahan_add(struct canal_quad *q, cp_real d)
 {
     cp_real y = d - q->comp;
     cp_real s = q->lam + y;
@@ -45,7 +41,7 @@ static void kahan_add(struct quad *q, cp_real d)
 }
 
 /* Reset the quadrature to half-node 0 (Lambda(t0) = 0 exactly). */
-static void quad_reset(const struct canal *c, struct quad *q, struct canal_jet *j)
+static void quad_reset(const struct canal *c, struct canal_quad *q, struct canal_jet *j)
 {
     canal_jet(c, c->t0, j);
     q->lam = CP_R(0.0);
@@ -62,7 +58,7 @@ static uint32_t half_node(uint32_t a, uint32_t d, int fwd)
 
 /* March npan Simpson panels from half-node a: forward (a -> a + 2 npan) or backward
  * (a -> a - 2 npan, 2 npan <= a). Leaves the jet of the final half-node in *j. */
-static void quad_march(const struct canal_path *tp, struct quad *q, uint32_t a, uint32_t npan,
+static void quad_march(const struct canal_path *tp, struct canal_quad *q, uint32_t a, uint32_t npan,
                        int fwd, cp_real hp, struct canal_jet *j)
 {
     const cp_real w = hp / CP_R(3.0);
@@ -270,7 +266,7 @@ static uint32_t arc_segments(cp_real rad, cp_real gap, cp_real tol)
  * 2 R_max |dLambda| <= CANAL_PATH_LAMBDA_TOL. Returns the panel count (>= 1). */
 static CP_NOINLINE uint32_t lambda_panels(const struct canal_path *tp)
 {
-    struct quad qc, qf;
+    struct canal_quad qc, qf;
     struct canal_jet j;
     cp_real hpc = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * RICH_COARSE);
     cp_real hpf = hpc * CP_R(0.5);
@@ -299,59 +295,64 @@ static CP_NOINLINE uint32_t lambda_panels(const struct canal_path *tp)
     return (uint32_t)cp_ceil(p);
 }
 
-/* Walk the grid once at twice its resolution (gsteps steps of 2 substeps panels, each
- * split in two: the same panel width hp as the real run, so this Lambda is at least as
- * accurate) and measure the max midpoint sagitta of the emitted positions along the
- * family-2 lines the stream runs along: LINES every line (and every output node and
- * segment midpoint of it must be regular and finite), CIRCLES the two bounding lines
- * its link moves follow. Work: 2 gsteps + 1 frames and, per step, 3 points on each of
- * those n or 2 lines; fixed before it starts. */
-static CP_NOINLINE int walk_sag(const struct canal_path *tp, uint32_t gsteps, cp_real *sag)
+/* Start a walk of the grid (the check's carry): Lambda and the frame at t0, no sagitta. */
+static void walk_reset(const struct canal_path *tp, struct canal_check *c, uint32_t m)
 {
-    struct quad q;
+    struct canal_jet j;
+    quad_reset(&tp->surf, &c->q, &j);
+    canal_frame(&j, &c->f);
+    c->smax = CP_R(0.0);
+    c->i = 0u;
+    c->m = m;
+    c->walk++;
+}
+
+/* Step i of the walk that measures the grid's sagitta (CANAL_CHECK_SAG): the grid at twice
+ * its resolution (each step of 2 substeps panels split in two: the same panel width hp as
+ * the real run, so this Lambda is at least as accurate), the max midpoint sagitta of the
+ * emitted positions along the family-2 lines the stream runs along: LINES every line (and
+ * every output node and segment midpoint of it must be regular and finite), CIRCLES the
+ * two bounding lines its link moves follow. Work: 2 frames and, on each of those n or 2
+ * lines, 3 points. The carry (c->q, c->f: the step's first node; c->smax) moves on. */
+static CP_NOINLINE int sag_step(const struct canal_path *tp, struct canal_check *c, uint32_t i)
+{
     struct canal_jet j;
     struct canal_frame f[3];
     cp_real lam[3];
-    uint32_t m = tp->substeps, i, k, l;
+    uint32_t m = tp->substeps, k, l;
     int lines = tp->head.mode == RASTER_LINES;
     uint32_t nl = lines ? tp->head.n : 2u;
-    cp_real smax = CP_R(0.0);
-    quad_reset(&tp->surf, &q, &j);
-    canal_frame(&j, &f[0]);
-    lam[0] = q.lam;
-    for (i = 0; i < gsteps; i++) {
-        /* m panels of width hp per half grid step, on the hp/2 half-node grid */
-        for (k = 1; k < 3u; k++) {
-            quad_march(tp, &q, 4u * m * i + 2u * m * (k - 1u), m, 1, tp->hp * CP_R(0.5), &j);
-            canal_frame(&j, &f[k]);
-            lam[k] = q.lam;
-        }
-        for (l = 0; l < nl; l++) {
-            cp_real al, bl, s2, h[3], b[3];
-            if (lines) {
-                line_label(tp, l, &al, &bl);
-            } else {
-                first_label(tp, l ? tp->u1 : tp->u0, &al, &bl);
-            }
-            for (k = 0; k < 3u; k++) {
-                h[k] = label_h(tp, &f[k], lam[k], al, bl);
-                b[k] = bl;
-                /* (a step's node k = 0 is the last step's k = 2, same inputs: checked
-                 * twice, the same verdict; cheaper in flash than skipping it) */
-                if (lines && !regular(tp, &f[k], h[k], bl)) {
-                    return CP_ERR_CUSP;
-                }
-            }
-            s2 = sag3(tp, f, h, b);
-            smax = s2 > smax ? s2 : smax; /* (CIRCLES: a NaN is passed over) */
-            if (lines && !cp_finite(s2)) {
-                return CP_ERR_NUMERIC;
-            }
-        }
-        f[0] = f[2];
-        lam[0] = lam[2];
+    f[0] = c->f;
+    lam[0] = c->q.lam;
+    /* m panels of width hp per half grid step, on the hp/2 half-node grid */
+    for (k = 1; k < 3u; k++) {
+        quad_march(tp, &c->q, 4u * m * i + 2u * m * (k - 1u), m, 1, tp->hp * CP_R(0.5), &j);
+        canal_frame(&j, &f[k]);
+        lam[k] = c->q.lam;
     }
-    *sag = smax;
+    for (l = 0; l < nl; l++) {
+        cp_real al, bl, s2, h[3], b[3];
+        if (lines) {
+            line_label(tp, l, &al, &bl);
+        } else {
+            first_label(tp, l ? tp->u1 : tp->u0, &al, &bl);
+        }
+        for (k = 0; k < 3u; k++) {
+            h[k] = label_h(tp, &f[k], lam[k], al, bl);
+            b[k] = bl;
+            /* (a step's node k = 0 is the last step's k = 2, same inputs: checked
+             * twice, the same verdict; cheaper in flash than skipping it) */
+            if (lines && !regular(tp, &f[k], h[k], bl)) {
+                return CP_ERR_CUSP;
+            }
+        }
+        s2 = sag3(tp, f, h, b);
+        c->smax = s2 > c->smax ? s2 : c->smax; /* (CIRCLES: a NaN is passed over) */
+        if (lines && !cp_finite(s2)) {
+            return CP_ERR_NUMERIC;
+        }
+    }
+    c->f = f[2];
     return CP_OK;
 }
 
@@ -360,7 +361,7 @@ static CP_NOINLINE int walk_sag(const struct canal_path *tp, uint32_t gsteps, cp
  * *worst to its segment count for tol (a lerp's middle steps are wider by 2 tan(phi/2)/phi,
  * phi = gap/2: counted in), and probe that it stays on the regular sheet at sig = k /
  * LINK_PROBES: a circle k = 0..LINK_PROBES, a link only its interior k = 1..LINK_PROBES - 1
- * (its ends are its lines' nodes, which walk_sag checked). CP_ERR_CUSP on a failed probe,
+ * (its ends are its lines' nodes, which sag_step checked). CP_ERR_CUSP on a failed probe,
  * else CP_OK. */
 static CP_NOINLINE int arc_probe(const struct canal_path *tp, const struct canal_frame *f,
                                  cp_real ha, cp_real ba, cp_real hb, cp_real bb, cp_real tol,
@@ -389,41 +390,29 @@ static CP_NOINLINE int arc_probe(const struct canal_path *tp, const struct canal
     return CP_OK;
 }
 
-/* Derive the link count of LINES mode: the largest angle gap between neighbouring
- * lines at t0 and t1 on circles of radius (R - off)/q (arc_probe). */
-static CP_NOINLINE int lines_link(struct canal_path *tp, cp_real tol)
+/* Unit i of the LINES link phase (CANAL_CHECK_LINK), which derives the link count: the
+ * largest angle gap between neighbouring lines at t0 and t1 on circles of radius
+ * (R - off)/q (arc_probe, into c->worst). Units: the n - 1 pairs of neighbours at t0 (the
+ * carry: Lambda and frame at t0), the march to t1 one output step (substeps panels) at a
+ * time, the n - 1 pairs at t1 (the carry: at t1 after the march). */
+static CP_NOINLINE int link_step(const struct canal_path *tp, struct canal_check *c, uint32_t i)
 {
-    struct quad q;
-    struct canal_jet j;
-    struct canal_frame f;
-    uint32_t end, jl, worst = 1u;
-    if (tp->head.n <= 1u) {
-        tp->head.link = 0u;
+    uint32_t pairs = (uint32_t)tp->head.n - 1u, steps = tp->head.steps, m = tp->substeps, jl;
+    cp_real aa, ba, ab, bb;
+    if (i >= pairs && i < pairs + steps) { /* the march from t0 to t1 */
+        struct canal_jet j;
+        quad_march(tp, &c->q, 2u * m * (i - pairs), m, 1, tp->hp, &j);
+        if (i + 1u == pairs + steps) {
+            canal_frame(&j, &c->f);
+        }
         return CP_OK;
     }
-    for (end = 0; end < 2u; end++) {
-        quad_reset(&tp->surf, &q, &j);
-        if (end == 1u) {
-            quad_march(tp, &q, 0u, (uint32_t)tp->head.steps * tp->substeps, 1, tp->hp, &j);
-        }
-        canal_frame(&j, &f);
-        for (jl = 0; jl + 1u < tp->head.n; jl++) {
-            cp_real aa, ba, ab, bb;
-            line_label(tp, jl, &aa, &ba);
-            line_label(tp, jl + 1u, &ab, &bb);
-            if (arc_probe(tp, &f, aa + q.lam * ba, ba, ab + q.lam * bb, bb, tol, 1, &worst) !=
-                CP_OK) {
-                return CP_ERR_CUSP;
-            }
-        }
-    }
-    if (worst - 1u > CP_MAX_LINK) {
-        return CP_ERR_TOL;
-    }
-    tp->head.link = (uint16_t)(worst - 1u);
-    return CP_OK;
+    jl = i < pairs ? i : i - pairs - steps;
+    line_label(tp, jl, &aa, &ba);
+    line_label(tp, jl + 1u, &ab, &bb);
+    return arc_probe(tp, &c->f, aa + c->q.lam * ba, ba, ab + c->q.lam * bb, bb, c->fit.tol, 1,
+                     &c->worst);
 }
-
 
 /* The raster checks shared with the other models (raster_check: INVAL, NONFINITE, RANGE,
  * TOO_MANY, TOOL in that order) after the canal's own kinds (labels, span: INVAL first),
@@ -444,34 +433,27 @@ static int validate(const struct raster_cfg *cfg)
     return err;
 }
 
-/* CIRCLES mode, every node of the grid (gsteps steps, at least 1): both bounding lines
- * regular; at each circle (node c (link + 1)) its points regular, and the step count
- * its exact sagitta needs (*worst). */
-static int circles_nodes(const struct canal_path *tp, uint32_t gsteps, cp_real tol, uint32_t *worst)
+/* Node i (0..gsteps) of the CIRCLES walk of the grid's nodes (CANAL_CHECK_NODES): both
+ * bounding lines regular; at each circle (node c (link + 1)) its points regular, and the
+ * step count its exact sagitta needs (c->worst). The carry (c->q, c->f) is node i - 1's. */
+static int node_step(const struct canal_path *tp, struct canal_check *c, uint32_t i)
 {
-    uint32_t m = tp->substeps, i;
-    struct quad q;
-    struct canal_jet j;
-    struct canal_frame f;
+    uint32_t m = tp->substeps;
     cp_real aa, ba, ab, bb;
-    *worst = 1u;
-    quad_reset(&tp->surf, &q, &j);
-    canal_frame(&j, &f);
-    for (i = 0; i <= gsteps; i++) {
-        if (i > 0u) {
-            quad_march(tp, &q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
-            canal_frame(&j, &f);
-        }
-        bound_label(tp, tp->u0, &f, q.lam, &aa, &ba);
-        bound_label(tp, tp->u1, &f, q.lam, &ab, &bb);
-        if (!regular(tp, &f, aa, ba) || !regular(tp, &f, ab, bb)) {
-            return CP_ERR_CUSP;
-        }
-        /* a circle: its points, and the step count from its exact sagitta */
-        if (i % (tp->head.link + 1u) == 0u &&
-            arc_probe(tp, &f, aa, ba, ab, bb, tol, 0, worst) != CP_OK) {
-            return CP_ERR_CUSP;
-        }
+    if (i > 0u) {
+        struct canal_jet j;
+        quad_march(tp, &c->q, 2u * m * (i - 1u), m, 1, tp->hp, &j);
+        canal_frame(&j, &c->f);
+    }
+    bound_label(tp, tp->u0, &c->f, c->q.lam, &aa, &ba);
+    bound_label(tp, tp->u1, &c->f, c->q.lam, &ab, &bb);
+    if (!regular(tp, &c->f, aa, ba) || !regular(tp, &c->f, ab, bb)) {
+        return CP_ERR_CUSP;
+    }
+    /* a circle: its points, and the step count from its exact sagitta */
+    if (i % (tp->head.link + 1u) == 0u &&
+        arc_probe(tp, &c->f, aa, ba, ab, bb, c->fit.tol, 0, &c->worst) != CP_OK) {
+        return CP_ERR_CUSP;
     }
     return CP_OK;
 }
@@ -486,90 +468,107 @@ static const struct raster_rule canal_rule[2] = {
     [RASTER_CIRCLES] = {.aim = SAG_MARGIN, .accept = SAG_MARGIN, .start = 16u, .pilot = 0u,
                         .grow_shift = RASTER_GROW_BY_ONE, .clamp = 0u}};
 
-/* Fix the grid of either mode, refining g by the search of raster_fit (canal_rule; at most
- * RASTER_FIT_ROUNDS + 1 walks), then the counts the stream needs. g is what the rounds
- * refine: LINES the steps per line (grid = output steps, gsteps = g), CIRCLES link + 1
- * (gsteps = (n - 1) g link steps between the first and the last circle, at least 1; a
- * single circle keeps its given link). Each round derives the panels per grid step from
- * `panels` and walks the grid (walk_sag; CIRCLES also circles_nodes, and walk_sag only
- * when the link is derived). LINES then derives the link (lines_link), CIRCLES the steps
- * per circle (the worst circle sagitta). */
-static int init_grid(struct canal_path *tp, const struct raster_cfg *cfg, uint32_t panels)
+/* The grid of a round of the tolerance search (CANAL_CHECK_ROUND). g is what the rounds
+ * refine (c->fit): LINES the steps per line (grid = output steps, gsteps = g), CIRCLES
+ * link + 1 (gsteps = (n - 1) g link steps between the first and the last circle, at least
+ * 1; a single circle keeps its given link). The panels per grid step come from c->panels.
+ * Then the round's walk begins: CIRCLES its nodes, LINES its sagittas. */
+static int round_begin(struct canal_path *tp, const struct raster_cfg *cfg, struct canal_check *c)
 {
-    struct raster_fit fit;
-    cp_real sag[2] = {CP_R(0.0), CP_R(0.0)}; /* the count not refined here stays verified */
     int lines = tp->head.mode == RASTER_LINES;
-    unsigned q = lines ? 0u : 1u;
-    uint32_t worst = 1u;
-    int round, err = CP_OK;
-    raster_fit_begin(&fit, cfg, &canal_rule[tp->head.mode]);
-    for (round = 0; round <= RASTER_FIT_ROUNDS; round++) {
-        uint32_t g = fit.m[q], gsteps, m;
-        if (!lines && tp->head.n < 2u && cfg->link != RASTER_LINK_AUTO) {
-            g = cfg->link + 1u;
-        }
-        gsteps = lines ? g : (tp->head.n > 1u ? (uint32_t)(tp->head.n - 1u) * g : 1u);
-        /* panels >= 1, so m >= 1 */
-        m = cfg->substeps ? cfg->substeps : (panels + gsteps - 1u) / gsteps;
-        if (gsteps > CP_MAX_STEPS * 4u) {
-            return CP_ERR_TOO_MANY;
-        }
-        if (m > CP_MAX_SUBSTEPS) {
-            return CP_ERR_TOL;
-        }
-        tp->substeps = (uint16_t)m;
-        if (lines) {
-            tp->head.steps = (uint16_t)g;
-        } else {
-            tp->head.link = (uint16_t)(g - 1u);
-        }
-        tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
-        err = lines ? CP_OK : circles_nodes(tp, gsteps, fit.tol, &worst);
-        if (err == CP_OK && (lines || (fit.derive & 2u))) {
-            err = walk_sag(tp, gsteps, &sag[q]);
-        }
-        if (err != CP_OK) {
-            return err;
-        }
-        err = raster_fit_update(&fit, sag);
-        if (err != RASTER_FIT_MORE) {
-            break;
-        }
+    uint32_t g = c->fit.m[lines ? 0u : 1u], gsteps, m;
+    if (!lines && tp->head.n < 2u && cfg->link != RASTER_LINK_AUTO) {
+        g = cfg->link + 1u;
+    }
+    gsteps = lines ? g : (tp->head.n > 1u ? (uint32_t)(tp->head.n - 1u) * g : 1u);
+    /* panels >= 1, so m >= 1 */
+    m = cfg->substeps ? cfg->substeps : (c->panels + gsteps - 1u) / gsteps;
+    if (gsteps > CP_MAX_STEPS * 4u) {
+        return CP_ERR_TOO_MANY;
+    }
+    if (m > CP_MAX_SUBSTEPS) {
+        return CP_ERR_TOL;
+    }
+    tp->substeps = (uint16_t)m;
+    if (lines) {
+        tp->head.steps = (uint16_t)g;
+    } else {
+        tp->head.link = (uint16_t)(g - 1u);
+    }
+    tp->hp = (tp->surf.t1 - tp->surf.t0) / (cp_real)(2u * gsteps * m);
+    c->worst = 1u;
+    c->phase = lines ? CANAL_CHECK_SAG : CANAL_CHECK_NODES;
+    walk_reset(tp, c, lines ? gsteps : gsteps + 1u);
+    return CANAL_CHECK_MORE;
+}
+
+/* The counts are fixed: the stream's point count, and tp at point 0. */
+static int check_done(struct canal_path *tp)
+{
+    /* n <= CP_MAX_LINES, steps <= CP_MAX_STEPS, link <= CP_MAX_LINK: no overflow */
+    tp->head.count = raster_count(tp->head.n, tp->head.steps, tp->head.link);
+    return canal_path_seek(tp, 0u); /* also clears the label caches */
+}
+
+/* A round's walks are done: the search decides (raster_fit_update; at most
+ * RASTER_FIT_ROUNDS + 1 rounds). Verified: LINES goes on with the link arcs (regularity
+ * always, the count from the tolerance unless given), CIRCLES takes the steps per circle
+ * (given, or the worst circle's). */
+static int round_end(struct canal_path *tp, const struct raster_cfg *cfg, struct canal_check *c)
+{
+    int err = raster_fit_update(&c->fit, c->sag);
+    if (err == RASTER_FIT_MORE) {
+        c->phase = CANAL_CHECK_ROUND;
+        return CANAL_CHECK_MORE;
     }
     if (err != CP_OK) {
         return err; /* CP_ERR_TOL */
     }
-    if (lines) {
-        /* link arcs: regularity always, count from the tolerance unless given */
-        err = lines_link(tp, fit.tol);
-        if (err != CP_OK && !(err == CP_ERR_TOL && cfg->link != RASTER_LINK_AUTO)) {
-            return err;
+    if (tp->head.mode == RASTER_LINES) {
+        if (tp->head.n <= 1u) {
+            tp->head.link = 0u;
+            return check_done(tp);
         }
-        if (cfg->link != RASTER_LINK_AUTO) {
-            tp->head.link = tp->head.n > 1u ? cfg->link : 0u;
-        }
-    } else if (cfg->steps != 0u) {
+        c->phase = CANAL_CHECK_LINK;
+        c->worst = 1u;
+        walk_reset(tp, c, 2u * ((uint32_t)tp->head.n - 1u) + tp->head.steps);
+        return CANAL_CHECK_MORE;
+    }
+    if (cfg->steps != 0u) {
         tp->head.steps = cfg->steps;
     } else {
-        if (worst > CP_MAX_STEPS) {
+        if (c->worst > CP_MAX_STEPS) {
             return CP_ERR_TOL;
         }
-        tp->head.steps = (uint16_t)worst;
+        tp->head.steps = (uint16_t)c->worst;
     }
-    return CP_OK;
+    return check_done(tp);
 }
 
-int canal_path_init(struct canal_path *tp, const struct canal_cfg *surf,
-                    const struct raster_cfg *cfg)
+/* The LINES link phase is done: the link count from the worst arc, unless given (a given
+ * count is kept even where the tolerance would need more; a cusp is refused either way). */
+static int link_end(struct canal_path *tp, const struct raster_cfg *cfg, struct canal_check *c)
+{
+    if (cfg->link != RASTER_LINK_AUTO) {
+        tp->head.link = cfg->link;
+    } else if (c->worst - 1u > CP_MAX_LINK) {
+        return CP_ERR_TOL;
+    } else {
+        tp->head.link = (uint16_t)(c->worst - 1u);
+    }
+    return check_done(tp);
+}
+
+int canal_path_check_begin(struct canal_path *tp, const struct canal_cfg *surf,
+                           const struct raster_cfg *cfg, struct canal_check *c)
 {
     struct canal_jet j;
     struct canal_frame f;
-    uint32_t panels;
     int err;
-    if (tp == NULL || surf == NULL || cfg == NULL) {
+    if (tp == NULL || surf == NULL || cfg == NULL || c == NULL) {
         return CP_ERR_INVAL;
     }
-    tp->head.count = 0u; /* (until init succeeds) */
+    tp->head.count = 0u; /* (until the check succeeds) */
     tp->head.k = 0u;
     err = canal_init(&tp->surf, surf);
     if (err != CP_OK) {
@@ -595,14 +594,99 @@ int canal_path_init(struct canal_path *tp, const struct canal_cfg *surf,
     tp->q0 = cp_sqrt(f.q2);
     tp->r0 = j.r;
     tp->lab_d = tp->head.n > 1u ? CP_R(0.5) * (tp->u1 - tp->u0) / (cp_real)(tp->head.n - 1u) : CP_R(0.0);
-    panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
-    err = init_grid(tp, cfg, panels);
+    c->phase = CANAL_CHECK_LAMBDA;
+    c->walk = 0u;
+    c->i = 0u;
+    c->m = 0u;
+    c->sag[0] = CP_R(0.0); /* the count a mode does not refine stays verified */
+    c->sag[1] = CP_R(0.0);
+    raster_fit_begin(&c->fit, cfg, &canal_rule[tp->head.mode]);
+    return CANAL_CHECK_MORE;
+}
+
+/* Work units of one unit of the current phase (canal_path.h: a jet, or a label or point
+ * checked): SAG a grid step's marches (2 jets per panel, twice substeps panels) and its
+ * lines (LINES: the n lines' label and 3 points each); NODES a node's march, its two
+ * bounds and a circle's probes (2 units each: the rotation and the regularity); LINK a
+ * march step or a pair's labels and probes (counted as both). At least 1 unit of the
+ * phase per step. */
+static uint32_t units_per_step(const struct canal_path *tp, const struct canal_check *c)
+{
+    uint32_t m = tp->substeps, probes = 2u * (LINK_PROBES + 1u), cost;
+    switch ((enum canal_check_phase)c->phase) {
+    case CANAL_CHECK_SAG:
+        cost = 4u * m + 4u * (tp->head.mode == RASTER_LINES ? tp->head.n : 2u);
+        break;
+    case CANAL_CHECK_NODES:
+        cost = 2u * m + 4u + probes;
+        break;
+    default: /* CANAL_CHECK_LINK */
+        cost = 2u * m + 2u + probes;
+        break;
+    }
+    return cost >= CANAL_CHECK_WORK ? 1u : CANAL_CHECK_WORK / cost;
+}
+
+int canal_path_check_step(struct canal_path *tp, const struct raster_cfg *cfg,
+                          struct canal_check *c)
+{
+    uint32_t n, end;
+    int err = CP_OK;
+    switch ((enum canal_check_phase)c->phase) {
+    case CANAL_CHECK_LAMBDA:
+        c->panels = (cfg->substeps || tp->surf.kappa_const) ? 1u : lambda_panels(tp);
+        c->phase = CANAL_CHECK_ROUND;
+        return CANAL_CHECK_MORE;
+    case CANAL_CHECK_ROUND:
+        return round_begin(tp, cfg, c);
+    case CANAL_CHECK_NODES:
+    case CANAL_CHECK_SAG:
+    case CANAL_CHECK_LINK:
+        break;
+    }
+    n = units_per_step(tp, c);
+    end = c->m - c->i > n ? c->i + n : c->m;
+    for (; c->i < end && err == CP_OK; c->i++) {
+        switch ((enum canal_check_phase)c->phase) {
+        case CANAL_CHECK_NODES:
+            err = node_step(tp, c, c->i);
+            break;
+        case CANAL_CHECK_SAG:
+            err = sag_step(tp, c, c->i);
+            break;
+        default: /* CANAL_CHECK_LINK */
+            err = link_step(tp, c, c->i);
+            break;
+        }
+    }
     if (err != CP_OK) {
         return err;
     }
-    /* n <= CP_MAX_LINES, steps <= CP_MAX_STEPS, link <= CP_MAX_LINK: no overflow */
-    tp->head.count = raster_count(tp->head.n, tp->head.steps, tp->head.link);
-    return canal_path_seek(tp, 0u); /* also clears the label caches */
+    if (c->i < c->m) {
+        return CANAL_CHECK_MORE;
+    }
+    if (c->phase == CANAL_CHECK_NODES && (c->fit.derive & RASTER_FIT_LINK)) {
+        c->phase = CANAL_CHECK_SAG; /* the circles' link: its sagittas along the bounds */
+        walk_reset(tp, c, c->m - 1u);
+        return CANAL_CHECK_MORE;
+    }
+    if (c->phase == CANAL_CHECK_LINK) {
+        return link_end(tp, cfg, c);
+    }
+    c->sag[tp->head.mode == RASTER_LINES ? 0u : 1u] = c->smax;
+    return round_end(tp, cfg, c);
+}
+
+int canal_path_init(struct canal_path *tp, const struct canal_cfg *surf,
+                    const struct raster_cfg *cfg)
+{
+    struct canal_check c;
+    uint32_t s;
+    int err = canal_path_check_begin(tp, surf, cfg, &c);
+    for (s = 0; s < CANAL_CHECK_STEPS_MAX && err == CANAL_CHECK_MORE; s++) {
+        err = canal_path_check_step(tp, cfg, &c);
+    }
+    return err == CANAL_CHECK_MORE ? CP_ERR_NUMERIC : err; /* (cannot run out: STEPS_MAX) */
 }
 
 uint32_t canal_path_count(const struct canal_path *tp)
@@ -618,7 +702,7 @@ uint32_t canal_path_count(const struct canal_path *tp)
  * backward march reaches t0 (*j is then already the jet at t0). */
 static CP_NOINLINE void quad_to(struct canal_path *tp, uint32_t target, int back, struct canal_jet *j)
 {
-    struct quad q;
+    struct canal_quad q;
     uint32_t m2 = 2u * tp->substeps, from = tp->node;
     int valid = tp->quad_valid != 0u;
     if (valid && from == target) {
@@ -659,7 +743,7 @@ int canal_path_seek(struct canal_path *tp, uint32_t k)
     if (k == 0u && tp->head.mode == RASTER_CIRCLES) {
         /* the stream starts at node 0: set it up now, so the first point costs what
          * every other point costs */
-        struct quad q;
+        struct canal_quad q;
         struct canal_jet jt;
         quad_reset(&tp->surf, &q, &jt);
         tp->quad_valid = 1u;

@@ -73,6 +73,79 @@ struct canal_path {
     struct cp_sincos_st st;
 };
 
+/* Lambda's quadrature at a half-node: Lambda, its Kahan compensation, the integrand g. */
+struct canal_quad {
+    cp_real lam, comp, g;
+};
+
+/* ---- the check in slices (issue 22: a controller that always answers) ----
+ *
+ * canal_path_init is a long computation for a large job (it walks the whole patch once per
+ * round of the tolerance search; hundreds of millions of instructions at CP_MAX_LINES x
+ * CP_MAX_STEPS). The same work runs in slices so that its caller can read its link between
+ * them (proto.c: '?' and Ctrl-X during RUN's check):
+ *
+ *     err = canal_path_check_begin(&tp, &surf, &raster, &chk);      (the surface, the raster)
+ *     while (err == CANAL_CHECK_MORE) {                              (<= CANAL_CHECK_STEPS_MAX)
+ *         (read the link)
+ *         err = canal_path_check_step(&tp, &raster, &chk);
+ *     }                                            (CP_OK: tp streams; else canal_path_init's code)
+ *
+ * Every step does at most CANAL_CHECK_WORK work units (one unit: a jet of C and R, or one
+ * label or point of the patch checked), fixed before the step starts from the costs of its
+ * phase; the worst step on the M4F is measured by `make pollgap`. The phases (enum
+ * canal_check_phase) are canal_path_init's, in its order: the panel estimate of Lambda, then
+ * per round of the tolerance search a walk of the grid (CIRCLES: its nodes and circles,
+ * then its sagittas when the link is derived; LINES: its sagittas), then (LINES) the link
+ * arcs at both ends. Results, counts and codes are exactly canal_path_init's: the same
+ * operations in the same order, only cut between grid steps. surf and raster are read at
+ * begin and raster at every step: it must not change until the check ends. */
+#define CANAL_CHECK_MORE 1
+#define CANAL_CHECK_WORK 2048u
+/* Steps a check can take: each step does at least one grid step, label pair or link
+ * march step. Per round <= 2 walks of <= 4 CP_MAX_STEPS + 1 nodes (the grid is refused
+ * above 4 CP_MAX_STEPS steps) plus its set-up; rounds <= RASTER_FIT_ROUNDS + 1; the link
+ * phase 2 (CP_MAX_LINES - 1) pairs and CP_MAX_STEPS march steps; the panel estimate 1. */
+#define CANAL_CHECK_STEPS_MAX                                                                       \
+    ((RASTER_FIT_ROUNDS + 1u) * (2u * (4u * CP_MAX_STEPS + 1u) + 1u) + 2u * CP_MAX_LINES +        \
+     CP_MAX_STEPS + 2u)
+
+enum canal_check_phase {
+    CANAL_CHECK_LAMBDA = 0, /* the Simpson panel count of Lambda (one step) */
+    CANAL_CHECK_ROUND = 1,  /* set up the next round of the tolerance search's grid */
+    CANAL_CHECK_NODES = 2,  /* CIRCLES: the grid's nodes regular, its circles probed */
+    CANAL_CHECK_SAG = 3,    /* the grid's sagittas (LINES: every line regular) */
+    CANAL_CHECK_LINK = 4    /* LINES: the link arcs at t0, the march to t1, the arcs at t1 */
+};
+
+struct canal_check {
+    uint8_t phase;         /* enum canal_check_phase of the next step */
+    uint8_t walk;          /* walks of the patch begun (progress) */
+    uint32_t i, m;         /* the phase's next unit and its count (progress: grid nodes or
+                              steps, or link pairs and march steps) */
+    uint32_t panels;       /* Simpson panels over [t0, t1] (LAMBDA's estimate) */
+    struct raster_fit fit; /* the tolerance search */
+    cp_real sag[2];        /* the round's measured sagittas (raster_fit_update) */
+    uint32_t worst;        /* segments of the worst circle (CIRCLES) or link arc (LINES) */
+    /* a walk's carry from one step to the next: Lambda and the frame at its node, and
+     * the largest sagitta so far */
+    struct canal_quad q;
+    struct canal_frame f;
+    cp_real smax;
+};
+
+/* Begin the check: everything canal_path_init validates before its walks (the surface,
+ * the raster, the tool). Returns CANAL_CHECK_MORE (go on with canal_path_check_step) or
+ * one of canal_path_init's codes. tp streams nothing until the check ends with CP_OK. */
+CP_MUST_CHECK int canal_path_check_begin(struct canal_path *tp, const struct canal_cfg *surf,
+                                         const struct raster_cfg *raster, struct canal_check *c);
+
+/* One slice of the check (<= CANAL_CHECK_WORK units). Returns CANAL_CHECK_MORE, CP_OK (the
+ * counts are fixed and tp is at point 0, as after canal_path_init) or canal_path_init's
+ * code. raster: the one given to canal_path_check_begin, unchanged. */
+CP_MUST_CHECK int canal_path_check_step(struct canal_path *tp, const struct raster_cfg *raster,
+                                        struct canal_check *c);
+
 /* Validate the surface (canal_init on surf, copied into tp) and the raster request (the
  * model's geometry first, then the raster, as every model), derive step counts, walk the
  * patch once for regularity. raster: every field of struct raster_cfg (labels LAMBDA and

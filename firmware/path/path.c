@@ -19,22 +19,25 @@ int path_has(unsigned kind)
     }
 }
 
-/* The model's init (on error its count is 0), then the stream header. */
-#define PATH_INIT_ROW(name)                                                                        \
-    err = name##_path_init(&p->u.name, &geom->name, raster);                                       \
-    if (err != CP_OK) {                                                                            \
-        p->u.name.head.count = 0;                                                                  \
-        return err;                                                                                \
-    }                                                                                              \
+/* The stream header of a model whose init or check succeeded. */
+#define PATH_INFO_ROW(name)                                                                        \
     p->info.count = name##_path_count(&p->u.name);                                                 \
     p->info.n = p->u.name.head.n;                                                                  \
     p->info.steps = p->u.name.head.steps;                                                          \
     p->info.link = p->u.name.head.link;                                                            \
     p->info.mode = p->u.name.head.mode;                                                            \
-    return CP_OK;
+    break;
 
-int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
-              const union path_geom *geom)
+/* The whole init of a model without a sliced check (on error its count is 0). */
+#define PATH_INIT_ROW(name)                                                                        \
+    err = name##_path_init(&p->u.name, &geom->name, raster);                                       \
+    if (err != CP_OK) {                                                                            \
+        p->u.name.head.count = 0;                                                                  \
+    }                                                                                              \
+    break;
+
+int path_check_begin(struct path *p, struct path_check *c, uint8_t kind,
+                     const struct raster_cfg *raster, const union path_geom *geom)
 {
     int err;
     p->kind = kind;
@@ -43,16 +46,70 @@ int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
     p->info.steps = 0;
     p->info.link = 0;
     p->info.mode = 0;
-    if (raster == NULL || geom == NULL) {
+    if (raster == NULL || geom == NULL || !path_has(kind)) {
         return CP_ERR_INVAL;
     }
-    switch (kind) {
+    if (kind != PATH_CANAL) {
+        return PATH_CHECK_MORE; /* its whole init is the first step */
+    }
+    err = canal_path_check_begin(&p->u.canal, &geom->canal, raster, &c->u.canal);
+    return err == CANAL_CHECK_MORE ? PATH_CHECK_MORE : err;
+}
+
+int path_check_step(struct path *p, struct path_check *c, const struct raster_cfg *raster,
+                    const union path_geom *geom)
+{
+    int err = CP_ERR_INVAL;
+    if (p->kind == PATH_CANAL) { /* the sliced check (canal_path.h) */
+        err = canal_path_check_step(&p->u.canal, raster, &c->u.canal);
+        if (err == CANAL_CHECK_MORE) {
+            return PATH_CHECK_MORE;
+        }
+    } else { /* the others: the whole init (the canal's row is not taken here) */
+        switch (p->kind) {
 #define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : PATH_INIT_ROW(name))
 #include "models.def"
 #undef CP_MODEL
-    default:
-        return CP_ERR_INVAL;
+        default:
+            break;
+        }
     }
+    if (err != CP_OK) {
+        return err;
+    }
+    switch (p->kind) {
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : PATH_INFO_ROW(name))
+#include "models.def"
+#undef CP_MODEL
+    default:
+        break;
+    }
+    return CP_OK;
+}
+
+void path_check_progress(const struct path *p, const struct path_check *c, uint32_t *walk,
+                         uint32_t *i, uint32_t *m)
+{
+    *walk = 0u;
+    *i = 0u;
+    *m = 0u;
+    if (p->kind == PATH_CANAL) {
+        *walk = c->u.canal.walk;
+        *i = c->u.canal.i;
+        *m = c->u.canal.m;
+    }
+}
+
+int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
+              const union path_geom *geom)
+{
+    struct path_check c;
+    uint32_t s;
+    int err = path_check_begin(p, &c, kind, raster, geom);
+    for (s = 0; s < PATH_CHECK_STEPS_MAX && err == PATH_CHECK_MORE; s++) {
+        err = path_check_step(p, &c, raster, geom);
+    }
+    return err == PATH_CHECK_MORE ? CP_ERR_NUMERIC : err; /* (cannot run out: STEPS_MAX) */
 }
 
 uint32_t path_count(const struct path *p)

@@ -73,11 +73,43 @@ struct path {
 };
 
 /* Initialise the iterator of model `kind` on the raster `raster` and the model's
- * geometry, member <name> of `geom` (the job's union).
+ * geometry, member <name> of `geom` (the job's union): the whole check at once.
  * Errors: CP_ERR_INVAL for a kind that is not compiled in, or raster or geom NULL, else
  * the model's init codes (canal_path_init for the canal). On error p->info.count is 0. */
 CP_MUST_CHECK int path_init(struct path *p, uint8_t kind, const struct raster_cfg *raster,
                             const union path_geom *geom);
+
+/* ---- the check in slices (issue 22: a controller that always answers) ----
+ *
+ * path_init is path_check_begin, then path_check_step until it stops answering
+ * PATH_CHECK_MORE (at most PATH_CHECK_STEPS_MAX steps): RUN's validation of the job, cut
+ * into slices so that proto.c reads its link between them ('?' answers "<Check|...>",
+ * Ctrl-X cancels). The canal's check runs in slices of at most CANAL_CHECK_WORK units
+ * (canal_path.h; the worst slice on the M4F: `make pollgap`). The other models have no
+ * sliced check yet: their whole init is one step (they answer nothing while it runs). */
+#define PATH_CHECK_MORE 1
+#define PATH_CHECK_STEPS_MAX CANAL_CHECK_STEPS_MAX
+
+struct path_check {
+    union {
+        struct canal_check canal; /* PATH_CANAL */
+    } u;
+};
+
+/* Begin the check of model `kind` on raster and geom (path_init's arguments; both must stay
+ * unchanged until the check ends). Returns PATH_CHECK_MORE or path_init's codes. */
+CP_MUST_CHECK int path_check_begin(struct path *p, struct path_check *c, uint8_t kind,
+                                   const struct raster_cfg *raster, const union path_geom *geom);
+
+/* One slice of the check. Returns PATH_CHECK_MORE, CP_OK (p streams: path_count() points,
+ * the stream header in p->info) or path_init's codes (p->info.count is 0). */
+CP_MUST_CHECK int path_check_step(struct path *p, struct path_check *c,
+                                  const struct raster_cfg *raster, const union path_geom *geom);
+
+/* The check's progress for a status report: walks of the patch begun (1, 2, ...; 0 for a
+ * model checked in one step), the next unit of the current walk or phase and its units. */
+void path_check_progress(const struct path *p, const struct path_check *c, uint32_t *walk,
+                         uint32_t *i, uint32_t *m);
 
 /* 1 when model `kind` (enum path_kind) is compiled in (models.def WITH), else 0. */
 int path_has(unsigned kind);

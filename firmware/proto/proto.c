@@ -88,16 +88,22 @@ static void tx_u32(struct proto *p, uint32_t v)
     p->tx_len = (uint16_t)pos;
 }
 
+/* "error:<code> <text>", the head of every error reply (a cause may follow). */
+static void tx_error(struct proto *p, int code)
+{
+    tx_str(p, "error:");
+    tx_u32(p, (uint32_t)code);
+    tx_str(p, " ");
+    tx_str(p, cp_status_text(code));
+}
+
 static void reply_status(struct proto *p, int code)
 {
     if (code == CP_ST_OK) {
         tx_str(p, "ok\n");
         return;
     }
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
-    tx_str(p, " ");
-    tx_str(p, cp_status_text(code));
+    tx_error(p, code);
     tx_str(p, "\n");
 }
 
@@ -127,10 +133,7 @@ static void reply_command(struct proto *p, int code)
     while (kw < p->line_len && kw < PARSE_KW_MAX && p->line[kw] != ' ') {
         kw++;
     }
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
-    tx_str(p, " ");
-    tx_str(p, cp_status_text(code));
+    tx_error(p, code);
     tx_str(p, " (");
     tx_mem(p, p->line, kw);
     if (j->cause_len != 0u && (size_t)j->cause_st + j->cause_len <= p->line_len) {
@@ -178,17 +181,43 @@ static void reply_info(struct proto *p)
     tx_str(p, "]\n");
 }
 
-/* "<Idle>" or "<Run|L:j/n|P:k/m>" ("<Hold|...>"): the line (or circle) j of n of the
- * last point sent, and k points of the job's m sent (k counts from the job's first
- * point: RESUME). */
+/* 1 while a run streams (PROTO_RUN, PROTO_HOLD): its output format's state is set up. */
+static int streaming(const struct proto *p)
+{
+    return p->state == PROTO_RUN || p->state == PROTO_HOLD;
+}
+
+/* "/<a>" then ">\n" (the end of a status report's field "<k>/<a>"). */
+static void tx_of(struct proto *p, uint32_t a, const char *end)
+{
+    tx_str(p, "/");
+    tx_u32(p, a);
+    tx_str(p, end);
+}
+
+/* "<Idle>", "<Check|W:w|S:i/m>" (RUN's check: walk w of the patch, its step i of m;
+ * path_check_progress) or "<Run|L:j/n|P:k/m>" ("<Hold|...>"): the line (or circle) j of
+ * n of the last point sent, and k points of the job's m sent (k counts from the job's
+ * first point: RESUME). */
 static void reply_report(struct proto *p)
 {
-    static const char *const names[3] = {
-        [PROTO_IDLE] = "<Idle", [PROTO_RUN] = "<Run", [PROTO_HOLD] = "<Hold"};
+    static const char *const names[4] = {[PROTO_IDLE] = "<Idle",
+                                         [PROTO_RUN] = "<Run",
+                                         [PROTO_HOLD] = "<Hold",
+                                         [PROTO_CHECK] = "<Check"};
     uint32_t m = path_count(&p->path), k, block;
     tx_str(p, names[p->state]);
     if (p->state == PROTO_IDLE) {
         tx_str(p, ">\n");
+        return;
+    }
+    if (p->state == PROTO_CHECK) {
+        path_check_progress(&p->path, &p->out.check, &block, &k, &m);
+        tx_str(p, "|W:");
+        tx_u32(p, block);
+        tx_str(p, "|S:");
+        tx_u32(p, k);
+        tx_of(p, m, ">\n");
         return;
     }
     /* the items sent after the lead items (header lines, BEGIN) are points from start_k
@@ -200,13 +229,9 @@ static void reply_report(struct proto *p)
     block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
     tx_str(p, "|L:");
     tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
-    tx_str(p, "/");
-    tx_u32(p, p->path.info.n);
-    tx_str(p, "|P:");
+    tx_of(p, p->path.info.n, "|P:");
     tx_u32(p, k);
-    tx_str(p, "/");
-    tx_u32(p, m);
-    tx_str(p, ">\n");
+    tx_of(p, m, ">\n");
 }
 
 /*---------------------------------------------------------------------------
@@ -229,10 +254,7 @@ static void run_finish(struct proto *p, int status)
     p->tx_len = (uint16_t)(p->tx_len + n);
     if (p->fault_len > 0u && (status == CP_ST_PEER_ERROR || status == CP_ST_MACHINE_RESET)) {
         /* "error:19 machine reported an error (machine ALARM:9)" */
-        tx_str(p, "error:");
-        tx_u32(p, (uint32_t)status);
-        tx_str(p, " ");
-        tx_str(p, cp_status_text(status));
+        tx_error(p, status);
         tx_str(p, " (machine ");
         tx_mem(p, p->fault, p->fault_len);
         tx_str(p, ")\n");
@@ -242,20 +264,32 @@ static void run_finish(struct proto *p, int status)
     p->state = PROTO_IDLE;
 }
 
-/* RUN (first = 0) or RESUME first: validate the job and start streaming it. Returns
- * CP_ST_OK (the reply comes at the end of the run) or the status to reply now. */
+/* RUN (first = 0) or RESUME first: begin the job's check (PROTO_CHECK; proto_poll runs it
+ * in slices, run_check). Returns CP_ST_OK (the reply comes at the end of the run) or the
+ * status to reply now. */
 static int run_start(struct proto *p, uint32_t first)
 {
-    size_t n = 0;
     int err;
     if (job_ready(&p->job) != CP_ST_OK) {
         return CP_ST_NO_JOB;
     }
     job_geom_fill(&p->job);
-    err = path_init(&p->path, p->job.kind, &p->job.cfg, &p->job.geom);
-    if (err != CP_OK) {
+    err = path_check_begin(&p->path, &p->out.check, p->job.kind, &p->job.cfg, &p->job.geom);
+    if (err != PATH_CHECK_MORE) {
         return cp_status_of(err);
     }
+    p->run.start_k = first;
+    p->state = PROTO_CHECK;
+    return CP_ST_OK;
+}
+
+/* The check passed: what the program needs, the RESUME point, then the stream starts.
+ * Returns CP_ST_OK or the status to reply. */
+static int run_checked(struct proto *p)
+{
+    uint32_t first = p->run.start_k;
+    size_t n = 0;
+    int err;
     if (p->job.format == JOB_GCODE) { /* the geometry first, then what the program needs */
         err = out_gcode_check(&p->job);
         if (err != CP_ST_OK) {
@@ -280,7 +314,7 @@ static int run_start(struct proto *p, uint32_t first)
     p->run.t_last = hal_uart_now_ms(p->uart);
     place_init(&p->run.place, &p->job.place); /* the matrix once per RUN */
     p->state = PROTO_RUN;
-    switch ((enum job_format)p->fmt) {
+    switch ((enum job_format)p->fmt) { /* (the check's state in p->out is over) */
     case JOB_GCODE:
         n = out_gcode_start(&p->out.gcode, &p->run, &p->job, &p->path, p->tx + p->tx_len,
                             sizeof p->tx - p->tx_len);
@@ -291,6 +325,26 @@ static int run_start(struct proto *p, uint32_t first)
     }
     p->tx_len = (uint16_t)(p->tx_len + n);
     return CP_ST_OK;
+}
+
+/* One slice of RUN's check (PROTO_CHECK; path_check_step); at its end the stream starts,
+ * or the RUN command gets its error. Returns 1 (a slice is work done). */
+static int run_check(struct proto *p)
+{
+    int st;
+    if (tx_room(p) < PROTO_REPLY_MAX) {
+        return 0; /* the stream's first item, or the reply, may need a whole burst */
+    }
+    st = path_check_step(&p->path, &p->out.check, &p->job.cfg, &p->job.geom);
+    if (st == PATH_CHECK_MORE) {
+        return 1;
+    }
+    p->state = PROTO_IDLE;
+    st = st == CP_OK ? run_checked(p) : cp_status_of(st);
+    if (st != CP_ST_OK) {
+        reply_status(p, st);
+    }
+    return 1;
 }
 
 /*---------------------------------------------------------------------------
@@ -306,7 +360,7 @@ static void machine_poll(struct proto *p, uint32_t now)
     if (c == 0u || machine_link_room(&p->mach) == 0u) {
         return;
     }
-    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
+    if (streaming(p) && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
         due = out_gcode_poll_due(&p->out.gcode, &p->run, now);
     } else if (p->pass && (uint32_t)(now - p->t_pass) >= OUT_GCODE_POLL_MS &&
                (uint32_t)(now - p->t_mpoll) >= OUT_GCODE_POLL_MS) {
@@ -344,7 +398,7 @@ static void machine_line(struct proto *p)
     uint32_t num;
     enum machine_reply kind = machine_reply(p->job.machine, line, len, &num);
     uint32_t now = hal_uart_now_ms(p->uart);
-    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
+    if (streaming(p) && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_MACHINE) {
         int st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, num, now);
         if (kind == MACHINE_OTHER && len > 0u) {
             relay_wrapped(p, line, len);
@@ -377,7 +431,7 @@ static void machine_gone(struct proto *p)
 {
     p->mach.uart = NULL;
     p->pass = 0u;
-    if (p->state != PROTO_IDLE && p->prog_link == JOB_LINK_MACHINE) {
+    if (streaming(p) && p->prog_link == JOB_LINK_MACHINE) {
         run_finish(p, CP_ST_NO_MACHINE_LINK);
     }
 }
@@ -473,7 +527,7 @@ static int host_answer(struct proto *p)
     if (kind == MACHINE_OTHER) {
         return 0;
     }
-    if (p->state != PROTO_IDLE && p->prog_link == JOB_LINK_HOST) {
+    if (streaming(p) && p->prog_link == JOB_LINK_HOST) {
         switch ((enum job_format)p->fmt) {
         case JOB_GCODE:
             st = out_gcode_answer(&p->out.gcode, &p->run, &p->job, kind, num,
@@ -618,7 +672,7 @@ static int is_realtime(uint8_t c)
  * its chatter (echo:Unknown command: "M999?") is text. */
 static int realtime(struct proto *p, uint8_t c)
 {
-    if (p->state != PROTO_IDLE && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_HOST &&
+    if (streaming(p) && p->fmt == JOB_GCODE && p->prog_link == JOB_LINK_HOST &&
         p->line_len > 0u) {
         return 0;
     }
@@ -643,7 +697,10 @@ static int realtime(struct proto *p, uint8_t c)
     case RT_ABORT:
         p->line_len = 0;
         p->line_flags = 0;
-        if (p->state != PROTO_IDLE) {
+        if (p->state == PROTO_CHECK) { /* RUN's check is cancelled: its reply */
+            p->state = PROTO_IDLE;
+            reply_status(p, CP_ST_ABORTED);
+        } else if (p->state != PROTO_IDLE) {
             run_finish(p, CP_ST_ABORTED);
         }
         if (p->pass) { /* the passed-through line gets its terminal reply here */
@@ -711,7 +768,7 @@ static void frames_control(struct proto *p, enum out_frames_control c)
  * to the text path. */
 static void feed(struct proto *p, uint8_t c, int replayed)
 {
-    if (p->state != PROTO_IDLE) {
+    if (streaming(p)) {
         switch ((enum job_format)p->fmt) {
         case JOB_GCODE:
             break; /* the machine's answers are text lines */
@@ -784,22 +841,25 @@ int proto_poll(struct proto *p)
         dump_step(p);
         moved = 1;
     }
-    while (p->dump == 0u && p->tail.replay > 0u &&
+    while (p->dump == 0u && p->tail.replay > 0u && p->state != PROTO_CHECK &&
            tx_room(p) >= PROTO_REPLY_MAX) { /* <= FRAME_MIN */
         feed(p, out_frames_tail_next(&p->tail), 1);
         moved = 1;
     }
     while (p->dump == 0u && p->tail.replay == 0u && p->rx_pos < p->rx_len &&
            tx_room(p) >= PROTO_REPLY_MAX &&
-           (!p->pass || is_realtime(p->rx[p->rx_pos]))) { /* <= sizeof rx */
-        /* while a passed-through line waits, only real-time bytes at the head are taken
-         * ('!', '~', 0x18: a hold or an abort must not wait for a long $H) */
+           ((!p->pass && p->state != PROTO_CHECK) || is_realtime(p->rx[p->rx_pos]))) {
+        /* (<= sizeof rx) while a passed-through line waits or RUN's job is checked, only
+         * real-time bytes at the head are taken ('?', '!', '~', 0x18: a status or an abort
+         * must not wait for a long $H or check); the next lines wait, in order */
         feed(p, p->rx[p->rx_pos++], 0);
         moved = 1;
     }
     moved |= machine_take(p);
-    /* 4. one stream item */
-    if (p->state != PROTO_IDLE) {
+    /* 4. one slice of RUN's check, or one stream item */
+    if (p->state == PROTO_CHECK) {
+        moved |= run_check(p);
+    } else if (p->state != PROTO_IDLE) {
         moved |= run_emit(p);
     }
     return moved;

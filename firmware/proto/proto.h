@@ -14,7 +14,11 @@
  * '?' status report, '!' feed hold, '~' resume, 0x18 abort ('!', '~', 0x18 also go to a
  * grbl on the machine link, whose own real-time bytes they are).
  *
- * RUN validates the job (path_init) and streams it:
+ * RUN validates the job and streams it. The validation (path_check_begin, then one
+ * path_check_step per proto_poll: state PROTO_CHECK) runs in slices so that the link is
+ * read between them: '?' answers "<Check|W:w|S:i/m>", 0x18 cancels it (error:20); only
+ * real-time bytes at the head of the host's bytes are read meanwhile (the next lines wait
+ * in order). Then the stream:
  *   GCODE   a complete program for the job's MACHINE dialect (out_gcode.h) down the
  *           LINK: the machine link (two links: "[RUN:...]" and the final reply go to
  *           the host, the program and nothing else to the machine) or the host link (a
@@ -67,7 +71,9 @@
 #error "a stream item must fit one reply burst"
 #endif
 
-enum proto_state { PROTO_IDLE = 0, PROTO_RUN = 1, PROTO_HOLD = 2 };
+/* IDLE; CHECK: RUN validates the job in slices (path_check_step), reading only real-time
+ * bytes meanwhile; RUN, HOLD: the stream runs or holds. */
+enum proto_state { PROTO_IDLE = 0, PROTO_RUN = 1, PROTO_HOLD = 2, PROTO_CHECK = 3 };
 
 struct proto_cfg {
     const struct hal_uart *uart;    /* the host link; must stay valid while in use */
@@ -110,10 +116,12 @@ struct proto {
                                 dumping no byte is consumed: the lines come out whole) */
     struct out_run run;      /* stream position, acknowledgements, peer clock */
     union {                  /* the state of the run's output format (fmt), set up by its
-                              * start call; meaningless while state is PROTO_IDLE */
+                              * start call, while state is PROTO_RUN or PROTO_HOLD; before,
+                              * while PROTO_CHECK, the state of RUN's check */
 #define CP_OUTPUT(NAME, name, WORD) struct out_##name name;
 #include "outputs.def"
 #undef CP_OUTPUT
+        struct path_check check;
     } out;
 
     /* after a FRAMES run (outlives it): late host frames among the next text */
