@@ -725,15 +725,22 @@ static const struct raster_rule gsr_rule = {.aim = SAG_MARGIN, .accept = SAG_MAR
                                             .pilot = 0u, .grow_shift = RASTER_GROW_BY_ONE, .clamp = 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
-/* raster_overlap_check's ball of the section at u: the centre point and the larger
- * semi-axis (the ellipse lies within it). */
+/* raster_overlap_check's ball of the section at u: the centre point C(f_t(u)) and the
+ * larger semi-axis (the ellipse lies within it); no frame. Its u are multiples of 1/128,
+ * samples of gsr_init (k / 256): every value there was checked. */
 static int gsr_ball(const void *ctx, cp_real u, struct cp_vec3 *c, cp_real *r)
 {
-    struct gsr_sec s;
-    int err = sec_eval((const struct gsr *)ctx, u, &s);
-    *c = s.c;
-    *r = s.fn > s.fb ? s.fn : s.fb;
-    return err;
+    const struct gsr *g = ctx;
+    struct cp_vec3 jet[4];
+    cp_real f[4][3];
+    unsigned i;
+    for (i = 0; i < 3u; i++) { /* f_N, f_B, f_t (f[0][i]; the derivatives unused) */
+        sfun(g->cfg->r[i], u, &f[0][i]);
+    }
+    centre_jet(g, f[0][2], jet);
+    *c = jet[0];
+    *r = f[0][0] > f[0][1] ? f[0][0] : f[0][1];
+    return cp_finite(c->x + c->y + c->z + *r) ? CP_OK : CP_ERR_NUMERIC;
 }
 
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)
