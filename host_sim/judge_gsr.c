@@ -24,6 +24,11 @@
  *   normal   FRAMES: angle to the reference unit normal, limit 0.01 deg
  *   coverage every k exactly once, in order, from the run's first point; a complete run
  *            reaches points - 1; header count = n (steps + 1) + (n - 1) link
+ *   overlap  (issue 22) how deep the ball of the streamed tool centre (the surface point
+ *            without a tool) enters the sweep's solid FAR from its own section: more than
+ *            pi (max semi-axis + r) of centre arc away (ref_gsr_far_dist: the exact disks,
+ *            independent of the firmware's capsules); limit 1e-3 mm: the tool is outside,
+ *            an overlap is a gouge into another part of the pipe
  */
 #include "judge.h"
 
@@ -37,6 +42,7 @@
 #define JG_PI 3.14159265358979323846
 #define JG_LIM_POINT 1e-3
 #define JG_LIM_NORMAL 0.01
+#define JG_LIM_OVERLAP 1e-3
 
 static struct {
     int centre, frame, form, mode, output;
@@ -46,6 +52,7 @@ static struct {
 } jb;
 
 static struct ref_gsr rg;
+static struct ref_gsr_far rf; /* the far-part measure of the run's sweep */
 static struct {
     int active;
     uint32_t points, next;
@@ -55,7 +62,7 @@ static struct {
     int have_prev;
 } rn;
 
-static struct judge_stat sp, sc, sn;
+static struct judge_stat sp, sc, sn, so;
 static unsigned runs, runs_complete;
 static unsigned long cov_err, pts;
 static int chord_info;
@@ -227,6 +234,7 @@ void judge_gsr_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, 
         }
     }
     ref_gsr_set(&rg, jb.centre, (const double(*)[7])cc, (const double(*)[7])rr, jb.frame, jb.ref);
+    ref_gsr_far_init(&rf, &rg);
 }
 
 /* (u, section parameter) of point k of the run's raster. */
@@ -304,6 +312,11 @@ void judge_gsr_point(uint32_t k, double x, double y, double z, const double *n)
         /* the wire rounds each end by <= 0.05 um per axis */
         judge_stat_add(&sc, worst, chord_info ? 0.0 : jb.tol + 1e-4, k);
     }
+    { /* overlap: the ball at the tool centre (TIP: back up by r) against the far sweep */
+        double q[3] = {x, y, jb.output == 2 ? z + jb.tool : z}, r = jb.output ? jb.tool : 0.0, ua;
+        double far = ref_gsr_far_dist(&rg, &rf, q, u, JG_PI * (rf.rmax + r), r, &ua);
+        judge_stat_add(&so, far < r ? r - far : 0.0, JG_LIM_OVERLAP, k);
+    }
     rn.pu = u;
     rn.psig = sig;
     rn.pp[0] = x;
@@ -335,6 +348,7 @@ void judge_gsr_report(FILE *f, int *passed, int *failed)
     if (sn.n > 0ul) {
         judge_stat_row(f, passed, failed, "gsr", "normal", &sn, JG_LIM_NORMAL, "deg", 1);
     }
+    judge_stat_row(f, passed, failed, "gsr", "overlap", &so, JG_LIM_OVERLAP, "mm", 1);
     (*(cov_err == 0ul ? passed : failed))++;
     fprintf(f, "  %s judge gsr-coverage %lu point(s) in %u run(s), %lu coverage/header error(s)\n",
             cov_err == 0ul ? "PASS" : "FAIL", pts, runs, cov_err);

@@ -278,3 +278,157 @@ double ref_gsr_perimeter(double a, double b)
     }
     return 4.0 * A * (RPI / (2.0 * an)) * (1.0 - sum);
 }
+
+/* ---- the far parts of the sweep (ref_gsr.h) ---- */
+
+/* the section at u: centre, frame, semi-axes */
+static void far_section(const struct ref_gsr *g, double u, double C[3], double T[3], double N[3],
+                        double B[3], double *fn, double *fb)
+{
+    double a[3], b[3], t[3], D1[3], D2[3];
+    ref_gsr_fn(g->r[0], u, a);
+    ref_gsr_fn(g->r[1], u, b);
+    ref_gsr_fn(g->r[2], u, t);
+    ref_gsr_centre(g, t[0], C, D1, D2);
+    ref_gsr_frame(g, t[0], T, N, B);
+    *fn = a[0];
+    *fb = b[0];
+}
+
+/* distance from q to the filled ellipse {C + x N + y B : (x/fn)^2 + (y/fb)^2 <= 1} */
+static double far_disk(const double q[3], const double C[3], const double T[3], const double N[3],
+                       const double B[3], double fn, double fb)
+{
+    double d[3], h = 0.0, x = 0.0, y = 0.0, e = 0.0, lo = 0.0, hi = 1.5707963267948966;
+    int i;
+    for (i = 0; i < 3; i++) {
+        d[i] = q[i] - C[i];
+        h += T[i] * d[i];
+        x += N[i] * d[i];
+        y += B[i] * d[i];
+    }
+    x = fabs(x);
+    y = fabs(y);
+    if ((x / fn) * (x / fn) + (y / fb) * (y / fb) > 1.0) {
+        /* closest point (fn cos p, fb sin p), p in [0, pi/2] (the quadrant of (x, y)):
+         * the squared distance's derivative / 2 = x fn sin p - y fb cos p - (fn^2 - fb^2)
+         * sin p cos p is <= 0 at 0 and >= 0 at pi/2, one sign change */
+        for (i = 0; i < 60; i++) {
+            double p = 0.5 * (lo + hi), sp = sin(p), cp = cos(p);
+            if (x * fn * sp - y * fb * cp - (fn * fn - fb * fb) * sp * cp < 0.0) {
+                lo = p;
+            } else {
+                hi = p;
+            }
+        }
+        e = hypot(x - fn * cos(lo), y - fb * sin(lo));
+    }
+    return sqrt(h * h + e * e);
+}
+
+static double far_at(const struct ref_gsr *g, const double q[3], double u)
+{
+    double C[3], T[3], N[3], B[3], fn, fb;
+    far_section(g, u, C, T, N, B, &fn, &fb);
+    return far_disk(q, C, T, N, B, fn, fb);
+}
+
+static double far_norm(const double a[3], const double b[3])
+{
+    return hypot(hypot(a[0] - b[0], a[1] - b[1]), a[2] - b[2]);
+}
+
+void ref_gsr_far_init(struct ref_gsr_far *f, const struct ref_gsr *g)
+{
+    double prev[3] = {0.0, 0.0, 0.0};
+    int k, m, i;
+    f->len = 0.0;
+    f->rmax = 0.0;
+    f->lip = 0.0;
+    for (k = 0; k <= REF_GSR_FAR; k++) {
+        double *fr0 = f->fr[k][0], *fr1 = f->fr[k][1], *fr2 = f->fr[k][2], rad;
+        far_section(g, (double)k / REF_GSR_FAR, f->c[k], fr0, fr1, fr2, &f->ab[k][0],
+                    &f->ab[k][1]);
+        rad = f->ab[k][0] > f->ab[k][1] ? f->ab[k][0] : f->ab[k][1];
+        f->rmax = rad > f->rmax ? rad : f->rmax;
+        if (k > 0) {
+            double mv;
+            for (m = 1; m <= 8; m++) { /* the interval's arc by 8 chords */
+                double c[3], T[3], N[3], B[3], fn, fb;
+                far_section(g, (k - 1 + m / 8.0) / REF_GSR_FAR, c, T, N, B, &fn, &fb);
+                f->len += far_norm(c, prev);
+                memcpy(prev, c, sizeof prev);
+            }
+            /* the largest move of a disk point from sample k - 1 to k */
+            mv = far_norm(f->c[k], f->c[k - 1]) + rad * (far_norm(f->fr[k][1], f->fr[k - 1][1]) +
+                                                        far_norm(f->fr[k][2], f->fr[k - 1][2])) +
+                 fabs(f->ab[k][0] - f->ab[k - 1][0]) + fabs(f->ab[k][1] - f->ab[k - 1][1]);
+            f->lip = mv > f->lip ? mv : f->lip;
+        }
+        f->s[k] = f->len;
+        memcpy(prev, f->c[k], sizeof prev);
+    }
+    f->closed = far_norm(f->c[REF_GSR_FAR], f->c[0]) <= 1e-5 * f->len;
+    (void)i;
+}
+
+double ref_gsr_far_dist(const struct ref_gsr *g, const struct ref_gsr_far *f, const double q[3],
+                        double u, double near, double need, double *uat)
+{
+    double su, best = 1e30, dk[REF_GSR_FAR + 1], cut = need + f->lip;
+    int k, k0 = (int)(u * REF_GSR_FAR), far[REF_GSR_FAR + 1];
+    k0 = k0 < 0 ? 0 : k0 > REF_GSR_FAR ? REF_GSR_FAR : k0;
+    su = f->s[k0] + (u * REF_GSR_FAR - k0) * (k0 < REF_GSR_FAR ? f->s[k0 + 1] - f->s[k0] : 0.0);
+    *uat = -1.0;
+    for (k = 0; k <= REF_GSR_FAR; k++) {
+        double a = fabs(f->s[k] - su), lb;
+        far[k] = a > near && (!f->closed || f->len - a > near);
+        dk[k] = 1e30;
+        if (!far[k]) {
+            continue;
+        }
+        lb = far_norm(q, f->c[k]) - (f->ab[k][0] > f->ab[k][1] ? f->ab[k][0] : f->ab[k][1]);
+        dk[k] = lb < cut ? far_disk(q, f->c[k], f->fr[k][0], f->fr[k][1], f->fr[k][2],
+                                    f->ab[k][0], f->ab[k][1])
+                         : lb;
+        best = dk[k] < best ? dk[k] : best;
+    }
+    /* refine every far local minimum below the cut */
+    for (k = 0; k <= REF_GSR_FAR; k++) {
+        double a, b, x1, x2, f1, f2, gr = 0.6180339887498949;
+        int it;
+        if (!far[k] || dk[k] >= cut || (k > 0 && dk[k - 1] < dk[k]) ||
+            (k < REF_GSR_FAR && dk[k + 1] < dk[k])) {
+            continue;
+        }
+        a = (k > 0 && far[k - 1] ? k - 1 : k) / (double)REF_GSR_FAR;
+        b = (k < REF_GSR_FAR && far[k + 1] ? k + 1 : k) / (double)REF_GSR_FAR;
+        x1 = b - gr * (b - a);
+        x2 = a + gr * (b - a);
+        f1 = far_at(g, q, x1);
+        f2 = far_at(g, q, x2);
+        for (it = 0; it < 40; it++) {
+            if (f1 < f2) {
+                b = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = b - gr * (b - a);
+                f1 = far_at(g, q, x1);
+            } else {
+                a = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = a + gr * (b - a);
+                f2 = far_at(g, q, x2);
+            }
+        }
+        if (dk[k] < best + 1e-15) {
+            *uat = (double)k / REF_GSR_FAR;
+        }
+        if (f1 < best || f2 < best) {
+            best = f1 < f2 ? f1 : f2;
+            *uat = f1 < f2 ? x1 : x2;
+        }
+    }
+    return best;
+}

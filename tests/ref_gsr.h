@@ -62,4 +62,33 @@ double ref_gsr_psi(double theta);
 double ref_gsr_arc(double a, double b, double th0, double th1, double tol);
 double ref_gsr_perimeter(double a, double b);
 
+/* ---- the far parts of the sweep (issue 22): an independent overlap measure ----
+ * The solid of the sweep is the union of its section DISKS D(u) (the filled ellipses in
+ * the normal planes). ref_gsr_far_dist gives the distance from a point q to the part of
+ * that solid whose sections lie more than `near` mm of centre arc away from the section u
+ * (both ways round on a closed centre), wherever it is below `need` (mm): on REF_GSR_FAR + 1
+ * samples u' = k / REF_GSR_FAR each disk's distance exactly (the point's height over the
+ * disk's plane and its in-plane distance to the filled ellipse, the closest ellipse point
+ * by bisection of the derivative's sign), the samples within `lip` (the largest move of a
+ * disk point between samples) of `need` refined by golden section over their two
+ * neighbouring intervals (40 steps). A sample whose bounding ball (the larger semi-axis)
+ * is `need` + lip away or more is skipped (the distance there is at least need).
+ * A streamed tool centre q of radius r gouges that far part iff far_dist < r (need = r); a
+ * surface point (r = 0) lies inside it iff far_dist = 0. Written from the definitions
+ * alone (no firmware code; the firmware bounds pieces by capsules, this measures disks). */
+#define REF_GSR_FAR 512
+struct ref_gsr_far {
+    double s[REF_GSR_FAR + 1];        /* centre arc length from u = 0, mm (8 chords a sample) */
+    double c[REF_GSR_FAR + 1][3];     /* centre C(f_t(u)) */
+    double fr[REF_GSR_FAR + 1][3][3]; /* T, N, B */
+    double ab[REF_GSR_FAR + 1][2];    /* f_N, f_B */
+    double len, rmax, lip;            /* total arc, largest semi-axis, largest sample move */
+    int closed;                       /* |C(end) - C(start)| <= 1e-5 len */
+};
+void ref_gsr_far_init(struct ref_gsr_far *f, const struct ref_gsr *g);
+/* min over the far sections u' of |q - D(u')| (mm; *uat: that u', -1 if none below need),
+ * exact below need; otherwise a number >= need (1e30 when no section is far). */
+double ref_gsr_far_dist(const struct ref_gsr *g, const struct ref_gsr_far *f, const double q[3],
+                        double u, double near, double need, double *uat);
+
 #endif /* REF_GSR_H */

@@ -129,7 +129,8 @@ int test_status_of(void)
         {CP_ERR_TWIST, CP_ST_TWIST},
         {CP_ERR_BUFFER, CP_ST_BUFFER},
         {CP_ERR_SEAM, CP_ST_SEAM},
-        {-32, CP_ST_NUMERIC}, /* not (yet) an enum cp_err */
+        {CP_ERR_OVERLAP, CP_ST_OVERLAP},
+        {-33, CP_ST_NUMERIC}, /* not (yet) an enum cp_err */
         {1, CP_ST_NUMERIC},   /* WIRE_ONLY's value is no cp_err */
     };
     unsigned i;

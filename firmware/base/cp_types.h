@@ -86,8 +86,11 @@ enum cp_err {
     CP_ERR_TWIST = -29,         /* adjoining planes twist >= 45 degrees (3D data too sparse) */
     CP_ERR_BUFFER = -30,        /* caller buffer too small (the function reports the size) */
     /* closed curves (issue 22); wire code 46 */
-    CP_ERR_SEAM = -31           /* closed curve: a law's value or slope jumps at the seam
+    CP_ERR_SEAM = -31,          /* closed curve: a law's value or slope jumps at the seam
                                    (raster_seam_check, raster.h) */
+    /* global overlap (issue 22); wire code 47 */
+    CP_ERR_OVERLAP = -32        /* parts of the sweep far apart along its curve meet, where
+                                   the tool is outside (raster_overlap_check, raster.h) */
 };
 
 /* C99 compile-time assertion (no _Static_assert in C99). File scope only, unique tag. */

@@ -725,6 +725,24 @@ static const struct raster_rule gsr_rule = {.aim = SAG_MARGIN, .accept = SAG_MAR
                                             .pilot = 0u, .grow_shift = RASTER_GROW_BY_ONE, .clamp = 1u};
 CP_STATIC_ASSERT(GSR_WALK_ROUNDS == RASTER_FIT_ROUNDS, gsr_walk_rounds_documented);
 
+/* raster_overlap_check's ball of the section at u: the centre point C(f_t(u)) and the
+ * larger semi-axis (the ellipse lies within it); no frame. Its u are multiples of 1/128,
+ * samples of gsr_init (k / 256): every value there was checked. */
+static int gsr_ball(const void *ctx, cp_real u, struct cp_vec3 *c, cp_real *r)
+{
+    const struct gsr *g = ctx;
+    struct cp_vec3 jet[4];
+    cp_real f[4][3];
+    unsigned i;
+    for (i = 0; i < 3u; i++) { /* f_N, f_B, f_t (f[0][i]; the derivatives unused) */
+        sfun(g->cfg->r[i], u, &f[0][i]);
+    }
+    centre_jet(g, f[0][2], jet);
+    *c = jet[0];
+    *r = f[0][0] > f[0][1] ? f[0][0] : f[0][1];
+    return cp_finite(c->x + c->y + c->z + *r) ? CP_OK : CP_ERR_NUMERIC;
+}
+
 int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct raster_cfg *rc)
 {
     struct raster_fit fit;
@@ -766,6 +784,10 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
+    }
+    if (err == CP_OK) { /* the tool is outside: it sweeps 2 r beyond the surface */
+        struct raster_overlap o;
+        err = raster_overlap_check(gsr_ball, &it->g, CP_R(2.0) * it->tool_r, &o);
     }
     if (err != CP_OK) {
         it->head.count = 0;

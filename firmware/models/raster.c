@@ -129,3 +129,139 @@ int raster_seam_check(cp_real v0, cp_real d0, cp_real dd0, cp_real v1, cp_real d
     }
     return CP_OK;
 }
+
+/* A piece of the curve for raster_overlap_check: the capsule of radius r about the segment
+ * from a to b (the piece's ends), and the piece's length along the curve. */
+struct ovl_piece {
+    struct cp_vec3 a, b;
+    cp_real rb;       /* the ball radius at b (the next piece's start) */
+    cp_real r, len;
+};
+
+/* |a - b| */
+static cp_real ovl_dist(const struct cp_vec3 *a, const struct cp_vec3 *b)
+{
+    struct cp_vec3 d;
+    cp_v3_sub(a, b, &d);
+    return cp_v3_norm(&d);
+}
+
+/* x clamped to [0, 1] (NaN: 0) */
+static cp_real ovl_unit(cp_real x)
+{
+    return x > CP_R(0.0) ? (x < CP_R(1.0) ? x : CP_R(1.0)) : CP_R(0.0);
+}
+
+/* The distance between the segments [p.a, p.b] and [q.a, q.b]: the closest points at
+ * parameters s, t in [0, 1] minimise |p.a + s d1 - q.a - t d2|^2; the unconstrained
+ * minimum, clamped, then t recomputed for that s and clamped (s again for a clamped t):
+ * the standard closed form for segments (Ericson, Real-Time Collision Detection, 5.1.9).
+ * A segment of zero length is its point. */
+static cp_real ovl_seg_dist(const struct ovl_piece *p, const struct ovl_piece *q)
+{
+    struct cp_vec3 d1, d2, r, x, y;
+    cp_real a, e, f, c, b, den, s = CP_R(0.0), t = CP_R(0.0);
+    cp_v3_sub(&p->b, &p->a, &d1);
+    cp_v3_sub(&q->b, &q->a, &d2);
+    cp_v3_sub(&p->a, &q->a, &r);
+    a = cp_v3_dot(&d1, &d1);
+    e = cp_v3_dot(&d2, &d2);
+    f = cp_v3_dot(&d2, &r);
+    c = cp_v3_dot(&d1, &r);
+    b = cp_v3_dot(&d1, &d2);
+    if (a > CP_R(0.0) && e > CP_R(0.0)) {
+        den = a * e - b * b; /* >= 0; 0 for parallel segments: any s, take 0 */
+        s = den > CP_R(0.0) ? ovl_unit((b * f - c * e) / den) : CP_R(0.0);
+        t = (b * s + f) / e;
+        if (t < CP_R(0.0) || t > CP_R(1.0)) {
+            t = ovl_unit(t);
+            s = ovl_unit((b * t - c) / a);
+        }
+    } else if (a > CP_R(0.0)) {
+        s = ovl_unit(-c / a);
+    } else if (e > CP_R(0.0)) {
+        t = ovl_unit(f / e);
+    }
+    cp_v3_comb(&x, CP_R(1.0), &p->a, s, &d1);
+    cp_v3_comb(&y, CP_R(1.0), &q->a, t, &d2);
+    return ovl_dist(&x, &y);
+}
+
+/* The piece after piece p, [u, u + du], in place: its start is p's end (p->b, p->rb); its
+ * midpoint and end from ball(); the capsule radius is the largest of the three balls plus
+ * RASTER_OVERLAP_SAG times the midpoint's distance from the chord; its length runs
+ * through the midpoint. */
+static int ovl_next(raster_ball_fn ball, const void *ctx, cp_real u, cp_real du,
+                    struct ovl_piece *p)
+{
+    struct ovl_piece half;
+    cp_real rm, ra = p->rb;
+    int err = ball(ctx, u + CP_R(0.5) * du, &half.a, &rm);
+    p->a = p->b;
+    if (err == CP_OK) {
+        err = ball(ctx, u + du, &p->b, &p->rb);
+    }
+    half.b = half.a;
+    p->r = ra > p->rb ? ra : p->rb;
+    p->r = (rm > p->r ? rm : p->r) + RASTER_OVERLAP_SAG * ovl_seg_dist(p, &half);
+    p->len = ovl_dist(&p->a, &half.a) + ovl_dist(&half.a, &p->b);
+    return err;
+}
+
+int raster_overlap_check(raster_ball_fn ball, const void *ctx, cp_real grow,
+                         struct raster_overlap *o)
+{
+    const cp_real du = CP_R(1.0) / (cp_real)RASTER_OVERLAP_K;
+    struct ovl_piece pi, pj;
+    struct cp_vec3 c0;
+    cp_real len = CP_R(0.0), hmax = CP_R(0.0), rmax = CP_R(0.0), size = CP_R(0.0), near, gap;
+    uint32_t i, j;
+    int err, closed;
+    o->ua = o->ub = CP_R(0.0);
+    o->gap = CP_R(1.0e30);
+    /* the curve's length, its longest piece, largest capsule and size */
+    err = ball(ctx, CP_R(0.0), &pj.b, &pj.rb);
+    c0 = pj.b;
+    for (i = 0; i < RASTER_OVERLAP_K && err == CP_OK; i++) {
+        err = ovl_next(ball, ctx, (cp_real)i * du, du, &pj);
+        len += pj.len;
+        hmax = pj.len > hmax ? pj.len : hmax;
+        rmax = pj.r > rmax ? pj.r : rmax;
+        gap = ovl_dist(&pj.b, &c0);
+        size = gap > size ? gap : size;
+    }
+    if (err != CP_OK) {
+        return err;
+    }
+    if (!cp_finite(len + rmax + grow)) {
+        return CP_ERR_NUMERIC;
+    }
+    closed = ovl_dist(&pj.b, &c0) <= RASTER_SEAM_GAP * size;
+    near = RASTER_OVERLAP_PI * (rmax + CP_R(0.5) * grow) + CP_R(2.0) * hmax;
+    /* every pair of pieces i < j; `between`: the curve from the end of piece i to the
+     * start of piece j */
+    for (i = 0; i + 1u < RASTER_OVERLAP_K && err == CP_OK; i++) {
+        cp_real between = CP_R(0.0);
+        err = ball(ctx, (cp_real)i * du, &pi.b, &pi.rb);
+        if (err == CP_OK) {
+            err = ovl_next(ball, ctx, (cp_real)i * du, du, &pi);
+        }
+        pj = pi;
+        for (j = i + 1u; j < RASTER_OVERLAP_K && err == CP_OK; j++) {
+            err = ovl_next(ball, ctx, (cp_real)j * du, du, &pj);
+            if (between >= near && (!closed || len - pi.len - between - pj.len >= near)) {
+                gap = ovl_seg_dist(&pi, &pj) - pi.r - pj.r - grow;
+                if (!(gap >= o->gap)) { /* the closest pair so far (a NaN too) */
+                    o->ua = (cp_real)i * du;
+                    o->ub = (cp_real)j * du;
+                    o->gap = gap;
+                }
+                if (!(gap >= CP_R(0.0))) {
+                    return cp_finite(gap) ? CP_ERR_OVERLAP : CP_ERR_NUMERIC;
+                }
+            }
+            between += pj.len;
+        }
+    }
+    return err;
+}

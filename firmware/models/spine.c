@@ -34,7 +34,7 @@ static void sp_law(const struct spine *s, cp_real u, int full, struct spine_jet 
         break;
     case SPINE_R_COS: {
         cp_real w = CP_TWO_PI * k[2], sn, cs;
-        cp_sincos_kernel(w * u, &sn, &cs); /* |w u| <= 2 pi SPINE_K_MAX < CP_SINCOS_XMAX */
+        cp_sincos(w * u, &sn, &cs); /* out of line: flash; bit-identical to the kernel */
         j->r = k[0] * cs + k[1];
         j->ru = -k[0] * w * sn;
         if (full) {
@@ -60,7 +60,7 @@ static void sp_circle(const struct spine *s, cp_real r, cp_real w, cp_real u, in
                       struct spine_jet *j)
 {
     cp_real sn, cs, rw = r * w, rww = rw * w;
-    cp_sincos_kernel(w * u, &sn, &cs); /* |w u| <= 2 pi SPINE_TURNS_MAX < CP_SINCOS_XMAX */
+    cp_sincos(w * u, &sn, &cs); /* out of line: flash; bit-identical to the kernel */
     j->c.x = r * (cs * s->e1.x + sn * s->e2.x);
     j->c.y = r * (cs * s->e1.y + sn * s->e2.y);
     j->c.z = r * (cs * s->e1.z + sn * s->e2.z);
@@ -313,10 +313,11 @@ static int sp_axis_bezier(struct spine *s, const cp_real *p)
         d[i].y = p[3 * i + 4] - p[3 * i + 1];
         d[i].z = p[3 * i + 5] - p[3 * i + 2];
     }
-    memset(cand, 0, sizeof cand);
-    cand[0].x = CP_R(1.0);
-    cand[1].y = CP_R(1.0);
-    cand[2].z = CP_R(1.0);
+    for (i = 0; i < 3; i++) { /* the coordinate axes */
+        cand[i].x = i == 0 ? CP_R(1.0) : CP_R(0.0);
+        cand[i].y = i == 1 ? CP_R(1.0) : CP_R(0.0);
+        cand[i].z = i == 2 ? CP_R(1.0) : CP_R(0.0);
+    }
     cp_v3_cross(&d[0], &d[1], &cand[3]);
     cp_v3_cross(&d[1], &d[2], &cand[4]);
     cp_v3_cross(&d[0], &d[2], &cand[5]);
@@ -1075,10 +1076,13 @@ static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
     cp_real dv = it->u1 - it->u0;
     *sag = CP_R(0.0);
     for (j = 0; j < it->head.n; j++) {
-        struct raster_pt p[3];
+        struct raster_pt pt;
+        struct cp_vec3 p[3]; /* the last three points; p[0], p[1] are read from i = 2 on */
         struct spine_state st;
         cp_real fj = it->head.n > 1u ? (cp_real)j / (cp_real)(it->head.n - 1u) : CP_R(0.0);
-        memset(p, 0, sizeof p); /* p[0], p[1] are read only from i = 2 on */
+        for (i = 0; i < 3u; i++) {
+            p[i].x = p[i].y = p[i].z = CP_R(0.0);
+        }
         for (i = 0; i <= steps; i++) {
             cp_real th;
             int err = CP_OK;
@@ -1094,11 +1098,12 @@ static CP_NOINLINE int sp_walk_steps(struct spine_path *it, cp_real *sag)
             if (err != CP_OK) {
                 return err;
             }
+            spine_point(&st, th, -it->tool_r, &pt);
             p[0] = p[1];
             p[1] = p[2];
-            spine_point(&st, th, -it->tool_r, &p[2]);
+            p[2] = pt.p;
             if (i >= 2u) {
-                cp_real e = sp_sag3(&p[0].p, &p[1].p, &p[2].p);
+                cp_real e = sp_sag3(&p[0], &p[1], &p[2]);
                 if (!cp_finite(e)) {
                     return CP_ERR_NUMERIC;
                 }
