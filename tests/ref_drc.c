@@ -42,7 +42,7 @@ typedef double complex ref_cx;
 #endif
 
 /* the zero of an end angle, relative (drc.h DRC_ANGLE_ZERO, 2^-18) */
-#define REF_DRC_ANGLE_ZERO 3.814697265625e-6
+#define REF_DRC_ANGLE_ZERO 9.5367431640625e-7
 
 typedef ref_real v3[3];
 

@@ -100,7 +100,7 @@
  * references (tests/ref_drc.c) use the same float-sized tolerance, so every build takes
  * the same model on every segment; a genuine angle that small (3.8e-6 rad on a chord as
  * long as the coordinates) takes the linear model. */
-#define DRC_ANGLE_ZERO CP_R(3.814697265625e-6) /* 2^-18 = 64 x 2^-24 */
+#define DRC_ANGLE_ZERO CP_R(9.5367431640625e-7) /* 2^-20 = 16 x 2^-24 */
 
 /* Points closer than this fraction of the bounding-box size D are coincident
  * (A.3: 1e-12 D in double; the float build cannot resolve less than ~1e-6 D). */
