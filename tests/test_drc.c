@@ -1142,7 +1142,7 @@ int test_drc_zero_boundaries(void)
             CHECK(worst <= (CP_REAL_DOUBLE ? 1e-12 * 20.0 : 4.0 * 80.0 * 5.96e-8));
         }
         TEST_NOTE("drc zero boundary %s: %u points, vs the long double scheme %.3g mm, %.3g deg; "
-                  "%s %.3g (%s)\n", s == 0 ? "S-curve" : (s == 1 ? "run" : "circle"), cnt, dev[0],
+                  "%s %.3g (%s)\n", s == 0 ? "S-curve" : (s == 1 ? "run" : "circle"), (unsigned)cnt, dev[0],
                   dev[1], s == 0 ? "tangent at P2 off chord 2 (rad)"
                                  : (s == 1 ? "off the run's line (mm)" : "off the circle (mm)"),
                   worst, CP_REAL_NAME);
