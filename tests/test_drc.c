@@ -934,6 +934,18 @@ static void prop_dev(const double (*p)[3], const double (*t)[3], const long doub
     }
 }
 
+/* the stream's points and tangents in double */
+static void prop_stream(const struct drc_pt *b, uint32_t cnt, double (*S)[3], double (*ST)[3])
+{
+    uint32_t k;
+    for (k = 0; k < cnt; k++) {
+        S[k][0] = (double)b[k].p.x;
+        S[k][1] = (double)b[k].p.y;
+        ST[k][0] = (double)b[k].t.x;
+        ST[k][1] = (double)b[k].t.y;
+    }
+}
+
 #define PROP_OUT (((CP_MAX_DRC_POINTS - 1) << 5) + 1)
 int test_drc_judge_property(void)
 {
@@ -997,11 +1009,8 @@ int test_drc_judge_property(void)
         CHECK_EQ_INT((int)cnt, m);
         CHECK_EQ_INT(ref_drc_run_ld((const long double(*)[3])PL, n, K, RL, RTL, &m), 0);
         CHECK_EQ_INT((int)cnt, m);
+        prop_stream(b, cnt, S, ST);
         for (k = 0; k < cnt; k++) {
-            S[k][0] = (double)b[k].p.x;
-            S[k][1] = (double)b[k].p.y;
-            ST[k][0] = (double)b[k].t.x;
-            ST[k][1] = (double)b[k].t.y;
             for (i = 0; i < 2; i++) {
                 RD[k][i] = (long double)R[k][i];
                 RTD[k][i] = (long double)RT[k][i];
@@ -1020,7 +1029,8 @@ int test_drc_judge_property(void)
         } else if (v_judge != v_true || !v_true || rf[0] > 1e-4 * JD_LIM_MM ||
                    rf[1] > 1e-4 * JD_LIM_DEG) {
             TEST_NOTE("drc judge property: set %d (kind %d, n %d, K %d): stream %.3g mm %.3g deg "
-                      "(judge %s), vs truth %.3g mm %.3g deg, judge's ref vs truth %.3g mm %.3g deg\n",
+                      "(judge %s), vs truth %.3g mm %.3g deg, judge's ref vs truth %.3g mm %.3g "
+                      "deg\n",
                       tries, kind, n, K, sd[0], sd[1], v_judge ? "PASS" : "FAIL", tr[0], tr[1],
                       rf[0], rf[1]);
         }
@@ -1110,12 +1120,7 @@ int test_drc_zero_boundaries(void)
         }
         CHECK_EQ_INT(ref_drc_run_ld((const long double(*)[3])PL, n, (int)K, RL, RTL, &m), 0);
         CHECK_EQ_INT((int)cnt, m);
-        for (k = 0; k < cnt; k++) {
-            S[k][0] = (double)b[k].p.x;
-            S[k][1] = (double)b[k].p.y;
-            ST[k][0] = (double)b[k].t.x;
-            ST[k][1] = (double)b[k].t.y;
-        }
+        prop_stream(b, cnt, S, ST);
         prop_dev((const double(*)[3])S, (const double(*)[3])ST, (const long double(*)[3])RL,
                  (const long double(*)[3])RTL, cnt, dev);
         if (s == 0) { /* the tangent at P2 on chord 2 */
@@ -1127,7 +1132,8 @@ int test_drc_zero_boundaries(void)
         }
         if (s == 1) { /* the run P3 .. P4: every point between on the line through them */
             const struct cp_vec3 *a = &b[3u << K].p, *e = &b[4u << K].p;
-            double lx = (double)(e->x - a->x), ly = (double)(e->y - a->y), l = sqrt(lx * lx + ly * ly);
+            double lx = (double)(e->x - a->x), ly = (double)(e->y - a->y);
+            double l = sqrt(lx * lx + ly * ly);
             for (k = 3u << K; k <= 4u << K; k++) {
                 double px = (double)b[k].p.x - (double)a->x, py = (double)b[k].p.y - (double)a->y;
                 worst = fmax(worst, fabs(px * ly - py * lx) / l);
@@ -1142,8 +1148,8 @@ int test_drc_zero_boundaries(void)
             CHECK(worst <= (CP_REAL_DOUBLE ? 1e-12 * 20.0 : 4.0 * 80.0 * 5.96e-8));
         }
         TEST_NOTE("drc zero boundary %s: %u points, vs the long double scheme %.3g mm, %.3g deg; "
-                  "%s %.3g (%s)\n", s == 0 ? "S-curve" : (s == 1 ? "run" : "circle"), (unsigned)cnt, dev[0],
-                  dev[1], s == 0 ? "tangent at P2 off chord 2 (rad)"
+                  "%s %.3g (%s)\n", s == 0 ? "S-curve" : (s == 1 ? "run" : "circle"),
+                  (unsigned)cnt, dev[0], dev[1], s == 0 ? "tangent at P2 off chord 2 (rad)"
                                  : (s == 1 ? "off the run's line (mm)" : "off the circle (mm)"),
                   worst, CP_REAL_NAME);
         CHECK(dev[0] <= (CP_REAL_DOUBLE ? 1e-9 : JD_LIM_MM));
