@@ -8,6 +8,27 @@
 #include <math.h>
 #include <string.h>
 
+/* REF_DRC_LD = 1 (tests/ref_drc_ld.c): DRC-EXP in long double, the high-precision
+ * recomputation of the same scheme (issue 21: the judge's verdict is checked against it);
+ * the alternatives and the measures are compiled in the double build only. */
+#ifndef REF_DRC_LD
+#define REF_DRC_LD 0
+#endif
+#if REF_DRC_LD
+typedef long double ref_real;
+typedef long double complex ref_cx;
+#define R_(f) f##l       /* libm's real function f in ref_real: sqrtl, atan2l, ... */
+#define C_(f) c##f##l    /* and a complex one: cabsl, cargl, creall, cimagl */
+#define ref_drc_tangents ref_drc_tangents_ld
+#define ref_drc_insert ref_drc_insert_ld
+#define ref_drc_run ref_drc_run_ld
+#else
+typedef double ref_real;
+typedef double complex ref_cx;
+#define R_(f) f
+#define C_(f) c##f
+#endif
+
 /* Iteration counts of A.2 (double). The Cortex-M4F unit image runs this reference in
  * soft double, where the published counts take ~20 s; there it uses counts whose error is
  * still far below the float comparison's limits (2e-5 D, 1e-3 rad): sweeps contract by
@@ -22,50 +43,57 @@
 #define REF_T_BISECT 60
 #endif
 
-/* the zero of an end angle, relative (drc.h DRC_ANGLE_ZERO, 2^-18) */
-#define REF_DRC_ANGLE_ZERO 3.814697265625e-6
+/* the zero of an angle, relative (drc.h DRC_ANGLE_ZERO, 2^-20) */
+#define REF_DRC_ANGLE_ZERO 9.5367431640625e-7
 
-typedef double v3[3];
+typedef ref_real v3[3];
 
 /* re + i im without the float-complex macro I (C99: a complex is an array of two) */
-static double complex mkc(double re, double im)
+static ref_cx mkc(ref_real re, ref_real im)
 {
-    double complex z;
-    double *w = (double *)&z;
+    ref_cx z;
+    ref_real *w = (ref_real *)&z;
     w[0] = re;
     w[1] = im;
     return z;
 }
 
-static double vdot(const double *a, const double *b)
+/* e^z from the real functions (newlib declares no cexpl) */
+static ref_cx cx_exp(ref_cx z)
+{
+    ref_real r = R_(exp)(C_(real)(z));
+    return mkc(r * R_(cos)(C_(imag)(z)), r * R_(sin)(C_(imag)(z)));
+}
+
+static ref_real vdot(const ref_real *a, const ref_real *b)
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void vcross(const double *a, const double *b, double *o)
+static void vcross(const ref_real *a, const ref_real *b, ref_real *o)
 {
-    double r[3];
+    ref_real r[3];
     r[0] = a[1] * b[2] - a[2] * b[1];
     r[1] = a[2] * b[0] - a[0] * b[2];
     r[2] = a[0] * b[1] - a[1] * b[0];
     memcpy(o, r, sizeof r);
 }
 
-static double vlen(const double *a)
+static ref_real vlen(const ref_real *a)
 {
-    return sqrt(vdot(a, a));
+    return R_(sqrt)(vdot(a, a));
 }
 
-static void vdiff(const double *a, const double *b, double *o) /* o = a - b */
+static void vdiff(const ref_real *a, const ref_real *b, ref_real *o) /* o = a - b */
 {
     o[0] = a[0] - b[0];
     o[1] = a[1] - b[1];
     o[2] = a[2] - b[2];
 }
 
-static void vunit(double *a)
+static void vunit(ref_real *a)
 {
-    double l = vlen(a);
+    ref_real l = vlen(a);
     if (l > 0.0) {
         a[0] /= l;
         a[1] /= l;
@@ -73,46 +101,61 @@ static void vunit(double *a)
     }
 }
 
-/* ---- model functions (expm1 with the A.2 series threshold) ---- */
-static double complex E1c(double complex z)
+/* max |v_k| */
+static ref_real max_abs3(const ref_real v[3])
 {
-    if (cabs(z) < 1e-4) {
+    return R_(fmax)(R_(fmax)(R_(fabs)(v[0]), R_(fabs)(v[1])), R_(fabs)(v[2]));
+}
+
+/* The zero of an angle against the chord A-B of length c (issue 21, drc.h DRC_ANGLE_ZERO):
+ * 2^-20 (1 + (|A| + |B|)/c). Every decision A.2 takes at an exact 0 of an angle (a collinear
+ * vertex, a tangent on its chord, the model of a segment) compares with it here as in the
+ * firmware, so that both take the same branch whatever their precision. */
+static ref_real angle_zero(const ref_real A[3], const ref_real B[3], ref_real c)
+{
+    return REF_DRC_ANGLE_ZERO * (1.0 + (max_abs3(A) + max_abs3(B)) / c);
+}
+
+/* ---- model functions (expm1 with the A.2 series threshold) ---- */
+static ref_cx E1c(ref_cx z)
+{
+    if (C_(abs)(z) < 1e-4) {
         return 1.0 + z / 2.0 + z * z / 6.0 + z * z * z / 24.0;
     }
-    return (cexp(z) - 1.0) / z;
+    return (cx_exp(z) - 1.0) / z;
 }
 
-static double complex E2c(double complex z)
+static ref_cx E2c(ref_cx z)
 {
-    if (cabs(z) < 1e-4) {
+    if (C_(abs)(z) < 1e-4) {
         return 0.5 + z / 6.0 + z * z / 24.0 + z * z * z / 120.0;
     }
-    return (cexp(z) - 1.0 - z) / (z * z);
+    return (cx_exp(z) - 1.0 - z) / (z * z);
 }
 
-static double E1r(double q)
+static ref_real E1r(ref_real q)
 {
-    return fabs(q) < 1e-4 ? 1.0 + q / 2.0 + q * q / 6.0 + q * q * q / 24.0 : expm1(q) / q;
+    return R_(fabs)(q) < 1e-4 ? 1.0 + q / 2.0 + q * q / 6.0 + q * q * q / 24.0 : R_(expm1)(q) / q;
 }
 
-static double E2r(double q)
+static ref_real E2r(ref_real q)
 {
-    return fabs(q) < 1e-4 ? 0.5 + q / 6.0 + q * q / 24.0 + q * q * q / 120.0
-                          : (expm1(q) - q) / (q * q);
+    return R_(fabs)(q) < 1e-4 ? 0.5 + q / 6.0 + q * q / 24.0 + q * q * q / 120.0
+                          : (R_(expm1)(q) - q) / (q * q);
 }
 
-static double rr(double q)
+static ref_real rr(ref_real q)
 {
-    double e2 = E2r(q);
+    ref_real e2 = E2r(q);
     return (E1r(q) - e2) / e2;
 }
 
-static double rinv_ref(double rho)
+static ref_real rinv_ref(ref_real rho)
 {
-    double a = -49.0, b = 49.0;
+    ref_real a = -49.0, b = 49.0;
     int i;
     for (i = 0; i < REF_Q_BISECT; i++) {
-        double m = 0.5 * (a + b);
+        ref_real m = 0.5 * (a + b);
         if (rr(m) < rho) {
             a = m;
         } else {
@@ -123,21 +166,21 @@ static double rinv_ref(double rho)
 }
 
 /* end curvatures of the segment model */
-static void model_k(double a, double b, double L, double *ka, double *kb, double *q)
+static void model_k(ref_real a, ref_real b, ref_real L, ref_real *ka, ref_real *kb, ref_real *q)
 {
-    double th = fabs(a + b), Lt = th > 1e-12 ? L * (th / 2.0) / sin(th / 2.0) : L;
+    ref_real th = R_(fabs)(a + b), Lt = th > 1e-12 ? L * (th / 2.0) / R_(sin)(th / 2.0) : L;
     if (a * b > 0.0) {
-        double s = a > 0.0 ? 1.0 : -1.0, c;
-        *q = rinv_ref(fabs(b) / fabs(a));
-        c = fabs(a) / E2r(*q);
+        ref_real s = a > 0.0 ? 1.0 : -1.0, c;
+        *q = rinv_ref(R_(fabs)(b) / R_(fabs)(a));
+        c = R_(fabs)(a) / E2r(*q);
         *ka = s * c / Lt;
-        *kb = s * c * exp(*q) / Lt;
+        *kb = s * c * R_(exp)(*q) / Lt;
     } else if ((a == 0.0) != (b == 0.0)) {
         /* one zero end angle: limit of the convex model (0 at that end, unbounded at the
          * other) */
         *q = 0.0;
-        *ka = a == 0.0 ? 0.0 : copysign(1e300, a);
-        *kb = b == 0.0 ? 0.0 : copysign(1e300, b);
+        *ka = a == 0.0 ? 0.0 : R_(copysign)(1e300, a);
+        *kb = b == 0.0 ? 0.0 : R_(copysign)(1e300, b);
     } else {
         *q = 0.0;
         *ka = 2.0 * (2.0 * a - b) / Lt;
@@ -146,20 +189,21 @@ static void model_k(double a, double b, double L, double *ka, double *kb, double
 }
 
 /* rotate v (unit, perpendicular to unit n) by angle t about n */
-static void vrot(const double *v, const double *n, double t, double *o)
+static void vrot(const ref_real *v, const ref_real *n, ref_real t, ref_real *o)
 {
-    double w[3];
+    ref_real w[3];
     vcross(n, v, w);
-    o[0] = cos(t) * v[0] + sin(t) * w[0];
-    o[1] = cos(t) * v[1] + sin(t) * w[1];
-    o[2] = cos(t) * v[2] + sin(t) * w[2];
+    o[0] = R_(cos)(t) * v[0] + R_(sin)(t) * w[0];
+    o[1] = R_(cos)(t) * v[1] + R_(sin)(t) * w[1];
+    o[2] = R_(cos)(t) * v[2] + R_(sin)(t) * w[2];
 }
 
-int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
+int ref_drc_tangents(const ref_real (*P)[3], int n, ref_real (*T)[3])
 {
     v3 d[REF_DRC_MAXN], nv[REF_DRC_MAXN];
-    double L[REF_DRC_MAXN], phi[REF_DRC_MAXN], tj[REF_DRC_MAXN], tau[REF_DRC_MAXN];
-    double lo[3], hi[3], D, aS = 0.0, bE = 0.0;
+    ref_real L[REF_DRC_MAXN], phi[REF_DRC_MAXN], tj[REF_DRC_MAXN], tau[REF_DRC_MAXN];
+    ref_real Z[REF_DRC_MAXN]; /* angle_zero of each chord */
+    ref_real lo[3], hi[3], D, aS = 0.0, bE = 0.0;
     int i, k, sweep, first = -1;
     if (n < 3) {
         return REF_DRC_TOO_FEW;
@@ -175,11 +219,11 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
             if (!isfinite(P[i][k])) {
                 return REF_DRC_NONFINITE;
             }
-            lo[k] = fmin(lo[k], P[i][k]);
-            hi[k] = fmax(hi[k], P[i][k]);
+            lo[k] = R_(fmin)(lo[k], P[i][k]);
+            hi[k] = R_(fmax)(hi[k], P[i][k]);
         }
     }
-    D = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+    D = R_(sqrt)((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
              (hi[2] - lo[2]) * (hi[2] - lo[2]));
     for (i = 0; i + 1 < n; i++) {
         vdiff(P[i + 1], P[i], d[i]);
@@ -187,16 +231,17 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
         if (L[i] <= 1e-12 * D) {
             return REF_DRC_COINCIDENT;
         }
+        Z[i] = angle_zero(P[i], P[i + 1], L[i]);
         vunit(d[i]);
     }
     for (i = 1; i + 1 < n; i++) {
-        double c[3], s;
+        ref_real c[3], s;
         if (vdot(d[i - 1], d[i]) <= 0.0) {
             return REF_DRC_TURN;
         }
         vcross(d[i - 1], d[i], c);
         s = vlen(c);
-        if (s > 1e-6) {
+        if (s > Z[i - 1] + Z[i]) { /* else collinear: R_(sin)(turn) within both chords' zeros */
             vunit(c);
             memcpy(nv[i], c, sizeof c);
             if (first < 0) {
@@ -226,57 +271,60 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
     memcpy(nv[0], nv[first > 0 ? first : 1], sizeof nv[0]);
     phi[0] = phi[n - 1] = 0.0;
     for (i = 1; i + 1 < n; i++) {
-        double c[3];
+        ref_real c[3];
         vcross(d[i - 1], d[i], c);
-        phi[i] = atan2(vdot(c, nv[i]), vdot(d[i - 1], d[i]));
+        phi[i] = vlen(c) > Z[i - 1] + Z[i] ? R_(atan2)(vdot(c, nv[i]), vdot(d[i - 1], d[i])) : 0.0;
         tj[i] = 0.5;
     }
     for (i = 0; i < n; i++) {
         tau[i] = 0.0;
     }
     for (i = 1; i + 2 < n; i++) {
-        double c[3], ang;
+        ref_real c[3], ang;
         vcross(nv[i], nv[i + 1], c);
-        ang = atan2(vdot(c, d[i]), vdot(nv[i], nv[i + 1]));
-        if (fabs(ang) >= atan(1.0)) {
+        ang = R_(atan2)(vdot(c, d[i]), vdot(nv[i], nv[i + 1]));
+        if (R_(fabs)(ang) >= R_(atan)(1.0)) {
             return REF_DRC_TWIST;
         }
         tau[i] = ang / L[i];
     }
     if (n == 3) {
-        double ch[3], kap;
+        ref_real ch[3], kap;
         vdiff(P[2], P[0], ch);
-        kap = 2.0 * sin(phi[1]) / vlen(ch);
-        aS = asin(0.5 * L[0] * kap);
-        bE = asin(0.5 * L[1] * kap);
+        kap = 2.0 * R_(sin)(phi[1]) / vlen(ch);
+        aS = R_(asin)(0.5 * L[0] * kap);
+        bE = R_(asin)(0.5 * L[1] * kap);
     }
 #define A_OF(s) ((s) == 0 ? aS : tj[(s)] * phi[(s)])
 #define B_OF(s) ((s) == n - 2 ? bE : (1.0 - tj[(s) + 1]) * phi[(s) + 1])
     for (sweep = 0; sweep < REF_SWEEPS; sweep++) {
         if (n >= 4) {
-            double ka, kb, q;
+            ref_real ka, kb, q;
             model_k(A_OF(1), B_OF(1), L[1], &ka, &kb, &q);
-            aS = (1.0 - tj[1]) * phi[1] / rr(q * fmin(1.0, L[0] / L[1]));
+            aS = (1.0 - tj[1]) * phi[1] / rr(q * R_(fmin)(1.0, L[0] / L[1]));
             model_k(A_OF(n - 3), B_OF(n - 3), L[n - 3], &ka, &kb, &q);
-            bE = tj[n - 2] * phi[n - 2] * rr(q * fmin(1.0, L[n - 2] / L[n - 3]));
+            bE = tj[n - 2] * phi[n - 2] * rr(q * R_(fmin)(1.0, L[n - 2] / L[n - 3]));
             /* spec clarification (issue 6, B1): the end angle never exceeds the turn of
              * the neighbour vertex, so it stays < 90 deg and on the turn's side (a circle
              * has aS = bE <= its turns: unchanged) */
-            if (fabs(aS) > fabs(phi[1])) {
+            if (R_(fabs)(aS) > R_(fabs)(phi[1])) {
                 aS = phi[1];
             }
-            if (fabs(bE) > fabs(phi[n - 2])) {
+            if (R_(fabs)(bE) > R_(fabs)(phi[n - 2])) {
                 bE = phi[n - 2];
             }
+            /* an end angle within its chord's zero is the tangent on the chord */
+            aS = R_(fabs)(aS) <= Z[0] ? 0.0 : aS;
+            bE = R_(fabs)(bE) <= Z[n - 2] ? 0.0 : bE;
         }
         for (i = 1; i + 1 < n; i++) {
-            double x0 = 0.0, x1 = 1.0;
+            ref_real x0 = 0.0, x1 = 1.0;
             int it;
             if (phi[i] == 0.0) {
                 continue;
             }
             for (it = 0; it < REF_T_BISECT; it++) {
-                double x = 0.5 * (x0 + x1), ka, kb, kl, kr, q, f;
+                ref_real x = 0.5 * (x0 + x1), ka, kb, kl, kr, q, f;
                 model_k(x * phi[i], B_OF(i), L[i], &ka, &kb, &q);
                 model_k(A_OF(i - 1), (1.0 - x) * phi[i], L[i - 1], &kl, &kr, &q);
                 f = (ka - kr) * (phi[i] > 0.0 ? 1.0 : -1.0);
@@ -286,16 +334,20 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
                     x1 = x;
                 }
             }
+            /* "without a sign change the end value is taken" (A.2): the tangent on a chord,
+             * decided with the zero of that chord's angles */
             tj[i] = 0.5 * (x0 + x1);
+            tj[i] = R_(fabs)(tj[i] * phi[i]) <= Z[i] ? 0.0 : tj[i];
+            tj[i] = R_(fabs)((1.0 - tj[i]) * phi[i]) <= Z[i - 1] ? 1.0 : tj[i];
         }
     }
     for (i = 0; i < n; i++) {
         int c = i < n - 1 ? i : n - 2, v = i == 0 ? 1 : (i == n - 1 ? n - 2 : i);
-        double ang = i == 0 ? aS : (i == n - 1 ? -bE : A_OF(i)), chi = 0.0, t0[3];
+        ref_real ang = i == 0 ? aS : (i == n - 1 ? -bE : A_OF(i)), chi = 0.0, t0[3];
         if (n >= 4) {
-            double ch[3], ks, tb;
+            ref_real ch[3], ks, tb;
             vdiff(P[v + 1], P[v - 1], ch);
-            ks = 2.0 * sin(phi[v]) / vlen(ch);
+            ks = 2.0 * R_(sin)(phi[v]) / vlen(ch);
             if (i == 0) {
                 chi = ks * tau[1] * L[0] * L[1] / 3.0;
             } else if (i == n - 1) {
@@ -307,7 +359,7 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
         }
         vrot(d[c], nv[i], -ang, t0);
         for (k = 0; k < 3; k++) {
-            T[i][k] = cos(chi) * t0[k] + sin(chi) * nv[i][k];
+            T[i][k] = R_(cos)(chi) * t0[k] + R_(sin)(chi) * nv[i][k];
         }
     }
 #undef A_OF
@@ -315,45 +367,39 @@ int ref_drc_tangents(const double (*P)[3], int n, double (*T)[3])
     return REF_DRC_OK;
 }
 
-/* max |v_k| */
-static double max_abs3(const double v[3])
+void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                    const ref_real TB[3], ref_real M[3], ref_real TM[3])
 {
-    return fmax(fmax(fabs(v[0]), fabs(v[1])), fabs(v[2]));
-}
-
-void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
-                    const double TB[3], double M[3], double TM[3])
-{
-    double d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al, zero;
-    const double *T2[2];
-    double *g2[2];
+    ref_real d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al, zero;
+    const ref_real *T2[2];
+    ref_real *g2[2];
     int k, s;
     vdiff(B, A, d);
     c = vlen(d);
     vunit(d);
     /* MATH-seeds A.2: "one end angle zero -> linear model". The exact 0 is decided with the
-     * firmware's documented tolerance (drc.h DRC_ANGLE_ZERO: 2^-18 (1 + (|A| + |B|)/c), the
-     * float build's rounding level x 8), so that this reference takes the model the firmware
+     * firmware's documented tolerance (drc.h DRC_ANGLE_ZERO: 2^-20 (1 + (|A| + |B|)/c), twice
+     * the float build's rounding bound), so that this reference takes the model the firmware
      * takes; an angle at double rounding (1e-16) next to a finite one would otherwise take
      * the exponential model with rho ~ 1e14 and put M 1e-2 mm off (issue 21). */
-    zero = REF_DRC_ANGLE_ZERO * (1.0 + (max_abs3(A) + max_abs3(B)) / c);
+    zero = angle_zero(A, B, c);
     T2[0] = TA;
     T2[1] = TB;
     g2[0] = gA;
     g2[1] = gB;
     for (s = 0; s < 2; s++) {
-        double p = vdot(T2[s], d), w[3], wl;
+        ref_real p = vdot(T2[s], d), w[3], wl;
         for (k = 0; k < 3; k++) {
             w[k] = T2[s][k] - p * d[k];
         }
         wl = vlen(w);
         for (k = 0; k < 3; k++) {
-            g2[s][k] = atan2(wl, p) > zero ? atan2(wl, p) * w[k] / wl : 0.0;
+            g2[s][k] = R_(atan2)(wl, p) > zero ? R_(atan2)(wl, p) * w[k] / wl : 0.0;
         }
     }
     {
-        double a = vlen(gA), b = vlen(gB);
-        double complex GA = 0.0, GB = 0.0, rho = 0.0;
+        ref_real a = vlen(gA), b = vlen(gB);
+        ref_cx GA = 0.0, GB = 0.0, rho = 0.0;
         if (a > 0.0) {
             for (k = 0; k < 3; k++) {
                 e1[k] = gA[k] / a;
@@ -363,38 +409,38 @@ void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
             GB = mkc(vdot(gB, e1), vdot(gB, e2));
             rho = -GB / GA;
         }
-        if (a > 0.0 && b > 0.0 && creal(rho) > 0.0) {
-            double complex z = mkc(rinv_ref(cabs(rho)), 3.0 * carg(rho)), C, d1, gm;
+        if (a > 0.0 && b > 0.0 && C_(real)(rho) > 0.0) {
+            ref_cx z = mkc(rinv_ref(C_(abs)(rho)), 3.0 * C_(arg)(rho)), C, d1, gm;
             int it;
             for (it = 0; it < 30; it++) {
-                double complex h = 1e-7 * (1.0 + cabs(z)), f, fp, st;
+                ref_cx h = 1e-7 * (1.0 + C_(abs)(z)), f, fp, st;
                 f = (E1c(z) - E2c(z)) / E2c(z) - rho;
                 /* derivative of r: r = E1/E2 - 1, E1' = (e^z - E1)/z, E2' = (E1 - 2E2)/z */
-                if (cabs(z) > 1e-3) {
-                    double complex e1z = E1c(z), e2z = E2c(z);
-                    double complex d1z = (cexp(z) - e1z) / z, d2z = (e1z - 2.0 * e2z) / z;
+                if (C_(abs)(z) > 1e-3) {
+                    ref_cx e1z = E1c(z), e2z = E2c(z);
+                    ref_cx d1z = (cx_exp(z) - e1z) / z, d2z = (e1z - 2.0 * e2z) / z;
                     fp = (d1z * e2z - e1z * d2z) / (e2z * e2z);
                 } else {
                     fp = ((E1c(z + h) / E2c(z + h)) - (E1c(z - h) / E2c(z - h))) / (2.0 * h);
                 }
                 st = f / fp;
-                if (cabs(st) > 1.0) {
-                    st /= cabs(st);
+                if (C_(abs)(st) > 1.0) {
+                    st /= C_(abs)(st);
                 }
                 z -= st;
-                if (creal(z) > 49.0) {
-                    z = mkc(49.0, cimag(z));
+                if (C_(real)(z) > 49.0) {
+                    z = mkc(49.0, C_(imag)(z));
                 }
-                if (creal(z) < -49.0) {
-                    z = mkc(-49.0, cimag(z));
+                if (C_(real)(z) < -49.0) {
+                    z = mkc(-49.0, C_(imag)(z));
                 }
             }
             C = -GA / E2c(z);
             d1 = GA + (C / 2.0) * E2c(z / 2.0);
             gm = GA + (C / 2.0) * E1c(z / 2.0);
             for (k = 0; k < 3; k++) {
-                D1[k] = creal(d1) * e1[k] + cimag(d1) * e2[k];
-                GM[k] = creal(gm) * e1[k] + cimag(gm) * e2[k];
+                D1[k] = C_(real)(d1) * e1[k] + C_(imag)(d1) * e2[k];
+                GM[k] = C_(real)(gm) * e1[k] + C_(imag)(gm) * e2[k];
             }
         } else {
             for (k = 0; k < 3; k++) {
@@ -405,21 +451,21 @@ void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
     }
     al = vlen(D1);
     for (k = 0; k < 3; k++) {
-        double u = al > 0.0 ? D1[k] / al : 0.0;
-        M[k] = A[k] + c / (2.0 * cos(al)) * (cos(al) * d[k] + sin(al) * u);
+        ref_real u = al > 0.0 ? D1[k] / al : 0.0;
+        M[k] = A[k] + c / (2.0 * R_(cos)(al)) * (R_(cos)(al) * d[k] + R_(sin)(al) * u);
     }
     al = vlen(GM);
     for (k = 0; k < 3; k++) {
-        double u = al > 0.0 ? GM[k] / al : 0.0;
-        TM[k] = cos(al) * d[k] + sin(al) * u;
+        ref_real u = al > 0.0 ? GM[k] / al : 0.0;
+        TM[k] = R_(cos)(al) * d[k] + R_(sin)(al) * u;
     }
 }
 
-int ref_drc_run(const double (*P)[3], int n, int K, double (*out)[3], double (*Tout)[3],
+int ref_drc_run(const ref_real (*P)[3], int n, int K, ref_real (*out)[3], ref_real (*Tout)[3],
                 int *nout)
 {
-    static double Pa[REF_DRC_MAXOUT][3], Ta[REF_DRC_MAXOUT][3];
-    static double Pb[REF_DRC_MAXOUT][3], Tb[REF_DRC_MAXOUT][3];
+    static ref_real Pa[REF_DRC_MAXOUT][3], Ta[REF_DRC_MAXOUT][3];
+    static ref_real Pb[REF_DRC_MAXOUT][3], Tb[REF_DRC_MAXOUT][3];
     int m = n, pass, i, err;
     *nout = 0;
     if (n > REF_DRC_MAXN) {
@@ -453,6 +499,7 @@ int ref_drc_run(const double (*P)[3], int n, int K, double (*out)[3], double (*T
     return REF_DRC_OK;
 }
 
+#if !REF_DRC_LD
 /* ---- alternatives ---- */
 
 int ref_dd4(const double (*P)[3], int n, int K, double (*out)[3])
@@ -669,3 +716,4 @@ void ref_measure(const double (*P)[3], int n, int sgn, struct ref_measures *m)
         m->t_extrema = count_extrema(t, nt, 1e-6 * tm);
     }
 }
+#endif /* !REF_DRC_LD */

@@ -39,6 +39,17 @@ void ref_drc_insert(const double A[3], const double TA[3], const double B[3],
 int ref_drc_run(const double (*P)[3], int n, int K, double (*out)[3], double (*Tout)[3],
                 int *nout);
 
+/* The same three in long double: tests/ref_drc_ld.c compiles ref_drc.c with REF_DRC_LD = 1
+ * (the same source; libm's long double functions through <tgmath.h>). The high-precision
+ * recomputation of the scheme that host_sim's verdicts are checked against (issue 21);
+ * 64-bit mantissa on x86-64, the double build's precision where long double is double
+ * (the Cortex-M4F). */
+int ref_drc_tangents_ld(const long double (*P)[3], int n, long double (*T)[3]);
+void ref_drc_insert_ld(const long double A[3], const long double TA[3], const long double B[3],
+                       const long double TB[3], long double M[3], long double TM[3]);
+int ref_drc_run_ld(const long double (*P)[3], int n, int K, long double (*out)[3],
+                   long double (*Tout)[3], int *nout);
+
 /* Alternatives, 2^K samples per input segment; returns the count. */
 int ref_dd4(const double (*P)[3], int n, int K, double (*out)[3]);
 int ref_ccr(const double (*P)[3], int n, int K, double (*out)[3]);

@@ -153,12 +153,29 @@ int drc_size(uint32_t n, uint32_t passes, uint32_t *need)
     return CP_OK;
 }
 
+/* The zero of an angle measured against the chord a-b of length c (drc.h DRC_ANGLE_ZERO):
+ * DRC_ANGLE_ZERO (1 + (|a| + |b|)/c), |.| the max-abs coordinate. Every decision of this
+ * file that the maths takes at an exact 0 of an angle (a collinear vertex, a tangent on
+ * its chord, the model of a segment) compares with it, and tests/ref_drc.c does the same. */
+static cp_real max_abs(const struct cp_vec3 *v)
+{
+    cp_real m = cp_fabs(v->x);
+    m = cp_fabs(v->y) > m ? cp_fabs(v->y) : m;
+    return cp_fabs(v->z) > m ? cp_fabs(v->z) : m;
+}
+
+static cp_real angle_zero(const struct cp_vec3 *a, const struct cp_vec3 *b, cp_real c)
+{
+    return DRC_ANGLE_ZERO * (ONE + (max_abs(a) + max_abs(b)) / c);
+}
+
 /* Scratch of step 1 (the caller's tangent array holds the normals meanwhile). */
 struct drc_scratch {
     cp_real phi[CP_MAX_DRC_POINTS]; /* signed turning at interior vertices 1..n-2; at the
                                        ends (solve) the end angles a0 (phi[0], tp[0] = 1)
                                        and b1 (phi[n-1], tp[n-1] = 0) */
     cp_real len[CP_MAX_DRC_POINTS]; /* chord lengths */
+    cp_real zero[CP_MAX_DRC_POINTS]; /* angle_zero of each chord (DRC_ANGLE_ZERO) */
     cp_real tp[CP_MAX_DRC_POINTS];  /* tangent parameters t_j */
     cp_real tau[CP_MAX_DRC_POINTS]; /* AP torsion of chords 1..n-3 (3D only) */
 };
@@ -191,9 +208,10 @@ int drc_point_check(const struct cp_vec3 *q, int planar)
 }
 
 /* Validation and step 0 (A.3), in the order: count, per coordinate non-finite or range,
- * (planar != 0) off the plane, coincident chord, turning >= 90 deg. Fills len and the planar signed
- * turning phi_j = atan2((d_{j-1} x d_j).z, d_{j-1}.d_j) (0 when |cross| <= 1e-6 of the
- * chords, i.e. < 0.06 mdeg: collinear; the 3D path overwrites phi). */
+ * (planar != 0) off the plane, coincident chord, turning >= 90 deg. Fills len, zero and the
+ * planar signed turning phi_j = atan2((d_{j-1} x d_j).z, d_{j-1}.d_j), exactly 0 when
+ * |sin turn| <= zero_{j-1} + zero_j (collinear: the turn is the angle between the two chord
+ * directions, each as uncertain as an end angle on its chord; the 3D path overwrites phi). */
 static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32_t n,
                                     int planar, struct drc_scratch *w)
 {
@@ -235,13 +253,14 @@ static CP_ALWAYS_INLINE int analyse(const struct cp_vec3 *p, unsigned ps, uint32
         if (!(w->len[i] > dd)) {
             return CP_ERR_COINCIDENT;
         }
+        w->zero[i] = angle_zero(&p[i * ps], &p[(i + 1u) * ps], w->len[i]);
         if (i > 0u) {
             cp_real co = cp_v3_dot(&d0, &d1);
             if (!(co > ZERO)) {
                 return CP_ERR_TURN;
             }
-            cz = d0.x * d1.y - d0.y * d1.x; /* (d0 x d1).z */
-            w->phi[i] = cp_fabs(cz) > CP_R(1e-6) * w->len[i - 1u] * w->len[i]
+            cz = d0.x * d1.y - d0.y * d1.x; /* (d0 x d1).z = L0 L1 sin(turn) */
+            w->phi[i] = cp_fabs(cz) > (w->zero[i - 1u] + w->zero[i]) * w->len[i - 1u] * w->len[i]
                             ? cp_atan2(cz, co) : ZERO;
         }
         d0 = d1;
@@ -303,8 +322,10 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
             k = w->phi[v]; /* the neighbour vertex's turn */
             q = (e ? w->tp[v] : ONE - w->tp[v]) * k;
             x = e ? q * x : q / x;
-            /* |end angle| <= |turn|: < 90 deg and convex (same sign), circles untouched */
-            w->phi[e * (n - 1u)] = cp_fabs(x) > cp_fabs(k) ? k : x;
+            /* |end angle| <= |turn|: < 90 deg and convex (same sign), circles untouched;
+             * within the zero of its chord the end angle is 0 (on the chord) */
+            x = cp_fabs(x) > cp_fabs(k) ? k : x;
+            w->phi[e * (n - 1u)] = cp_fabs(x) <= w->zero[v - 1u + e] ? ZERO : x;
         }
         for (i = 1; i + 1u < n; i++) {
             cp_real lo = ZERO, hi = ONE, m;
@@ -320,7 +341,13 @@ static CP_ALWAYS_INLINE void solve(const struct cp_vec3 *p, unsigned ps, uint32_
                     hi = m;
                 }
             }
-            w->tp[i] = HALF * (lo + hi);
+            /* a tangent within the zero of a chord lies on it (drc.h DRC_ANGLE_ZERO): the
+             * end value of A.2, exactly, so that seg_k's a b > 0 and a == 0 see the same
+             * angle in every build (the bracket's 2^-DRC_T_BISECT |phi| < 6e-9 rad stays
+             * below the zero, >= 3.8e-6 rad, so the builds decide alike) */
+            m = HALF * (lo + hi);
+            m = cp_fabs(m * w->phi[i]) <= w->zero[i] ? ZERO : m;
+            w->tp[i] = cp_fabs((ONE - m) * w->phi[i]) <= w->zero[i - 1u] ? ONE : m;
         }
     }
 }
@@ -369,19 +396,6 @@ static CP_NOINLINE int tangents_planar(const struct cp_vec3 *p, unsigned ps, str
 }
 
 /* ---- step 2, planar ---- */
-
-/* The zero tolerance of the end angles of the segment a-b with chord c (DRC_ANGLE_ZERO). */
-static cp_real max_abs(const struct cp_vec3 *v)
-{
-    cp_real m = cp_fabs(v->x);
-    m = cp_fabs(v->y) > m ? cp_fabs(v->y) : m;
-    return cp_fabs(v->z) > m ? cp_fabs(v->z) : m;
-}
-
-static cp_real angle_zero(const struct cp_vec3 *a, const struct cp_vec3 *b, cp_real c)
-{
-    return DRC_ANGLE_ZERO * (ONE + (max_abs(a) + max_abs(b)) / c);
-}
 
 /* Planar insertion (A.2 step 2, real z): signed angles about +z. */
 static CP_NOINLINE void insert_planar(const struct drc_pt *a, const struct drc_pt *b,
@@ -443,7 +457,7 @@ static CP_NOINLINE int shape_3d(const struct cp_vec3 *p, unsigned ps, struct cp_
         cp_v3_cross(&d0, &d1, &c);
         cl = cp_v3_norm(&c);
         w->phi[i] = ZERO;
-        if (cl > CP_R(1e-6) * w->len[i - 1u] * w->len[i]) {
+        if (cl > (w->zero[i - 1u] + w->zero[i]) * w->len[i - 1u] * w->len[i]) { /* analyse */
             cp_real sg = ONE;
             cp_v3_comb(&c, ONE / cl, &c, ZERO, &c);
             if (have && cp_v3_dot(&c, &t[(i - 1u) * ts]) < ZERO) {
