@@ -152,39 +152,38 @@ static cp_real ovl_unit(cp_real x)
     return x > CP_R(0.0) ? (x < CP_R(1.0) ? x : CP_R(1.0)) : CP_R(0.0);
 }
 
-/* The distance between the segments [p.a, p.b] and [q.a, q.b]: the closest points at
- * parameters s, t in [0, 1] minimise |p.a + s d1 - q.a - t d2|^2; the unconstrained
- * minimum, clamped, then t recomputed for that s and clamped (s again for a clamped t):
- * the standard closed form for segments (Ericson, Real-Time Collision Detection, 5.1.9).
- * A segment of zero length is its point. */
+/* The distance from point x to the segment [a, b] (its closest point at the projection's
+ * parameter clamped to [0, 1]; a segment of zero length is its point). */
+static cp_real ovl_pt_seg(const struct cp_vec3 *x, const struct cp_vec3 *a, const struct cp_vec3 *b)
+{
+    struct cp_vec3 d, w, y;
+    cp_real dd, t = CP_R(0.0);
+    cp_v3_sub(b, a, &d);
+    cp_v3_sub(x, a, &w);
+    dd = cp_v3_dot(&d, &d);
+    if (dd > CP_R(0.0)) {
+        t = ovl_unit(cp_v3_dot(&w, &d) / dd);
+    }
+    cp_v3_comb(&y, CP_R(1.0), a, t, &d);
+    return ovl_dist(x, &y);
+}
+
+/* A lower bound of the distance between the segments of pieces p and q: RASTER_OVERLAP_SEG
+ * + 1 evenly spaced points of p's segment against q's segment, less half their spacing
+ * (every point of p's segment is that close to one of them). */
 static cp_real ovl_seg_dist(const struct ovl_piece *p, const struct ovl_piece *q)
 {
-    struct cp_vec3 d1, d2, r, x, y;
-    cp_real a, e, f, c, b, den, s = CP_R(0.0), t = CP_R(0.0);
-    cp_v3_sub(&p->b, &p->a, &d1);
-    cp_v3_sub(&q->b, &q->a, &d2);
-    cp_v3_sub(&p->a, &q->a, &r);
-    a = cp_v3_dot(&d1, &d1);
-    e = cp_v3_dot(&d2, &d2);
-    f = cp_v3_dot(&d2, &r);
-    c = cp_v3_dot(&d1, &r);
-    b = cp_v3_dot(&d1, &d2);
-    if (a > CP_R(0.0) && e > CP_R(0.0)) {
-        den = a * e - b * b; /* >= 0; 0 for parallel segments: any s, take 0 */
-        s = den > CP_R(0.0) ? ovl_unit((b * f - c * e) / den) : CP_R(0.0);
-        t = (b * s + f) / e;
-        if (t < CP_R(0.0) || t > CP_R(1.0)) {
-            t = ovl_unit(t);
-            s = ovl_unit((b * t - c) / a);
-        }
-    } else if (a > CP_R(0.0)) {
-        s = ovl_unit(-c / a);
-    } else if (e > CP_R(0.0)) {
-        t = ovl_unit(f / e);
+    struct cp_vec3 d, x;
+    cp_real best = CP_R(1.0e30);
+    uint32_t m;
+    cp_v3_sub(&p->b, &p->a, &d);
+    for (m = 0; m <= RASTER_OVERLAP_SEG; m++) {
+        cp_real e;
+        cp_v3_comb(&x, CP_R(1.0), &p->a, (cp_real)m / (cp_real)RASTER_OVERLAP_SEG, &d);
+        e = ovl_pt_seg(&x, &q->a, &q->b);
+        best = e < best ? e : best;
     }
-    cp_v3_comb(&x, CP_R(1.0), &p->a, s, &d1);
-    cp_v3_comb(&y, CP_R(1.0), &q->a, t, &d2);
-    return ovl_dist(&x, &y);
+    return best - CP_R(0.5) * cp_v3_norm(&d) / (cp_real)RASTER_OVERLAP_SEG;
 }
 
 /* The piece after piece p, [u, u + du], in place: its start is p's end (p->b, p->rb); its
@@ -194,17 +193,16 @@ static cp_real ovl_seg_dist(const struct ovl_piece *p, const struct ovl_piece *q
 static int ovl_next(raster_ball_fn ball, const void *ctx, cp_real u, cp_real du,
                     struct ovl_piece *p)
 {
-    struct ovl_piece half;
+    struct cp_vec3 m;
     cp_real rm, ra = p->rb;
-    int err = ball(ctx, u + CP_R(0.5) * du, &half.a, &rm);
+    int err = ball(ctx, u + CP_R(0.5) * du, &m, &rm);
     p->a = p->b;
     if (err == CP_OK) {
         err = ball(ctx, u + du, &p->b, &p->rb);
     }
-    half.b = half.a;
     p->r = ra > p->rb ? ra : p->rb;
-    p->r = (rm > p->r ? rm : p->r) + RASTER_OVERLAP_SAG * ovl_seg_dist(p, &half);
-    p->len = ovl_dist(&p->a, &half.a) + ovl_dist(&half.a, &p->b);
+    p->r = (rm > p->r ? rm : p->r) + RASTER_OVERLAP_SAG * ovl_pt_seg(&m, &p->a, &p->b);
+    p->len = ovl_dist(&p->a, &m) + ovl_dist(&m, &p->b);
     return err;
 }
 

@@ -301,12 +301,15 @@ CP_MUST_CHECK int raster_seam_check(cp_real v0, cp_real d0, cp_real dd0, cp_real
  * tested: their balls, each grown by `grow` (the tool: an outside tool's ball sweeps 2 r
  * beyond the surface it touches, so the caller passes 2 r; 0 for the surface alone), must
  * not meet:
- *   gap = (distance between the segments of pieces i and j) - R_i - R_j - grow >= 0.
+ *   gap = (distance between the segments of pieces i and j) - R_i - R_j - grow >= 0,
+ * the segments' distance bounded from below by RASTER_OVERLAP_SEG + 1 points of one against
+ * the other, less half their spacing (1/16 of a piece: a looser bound by that much).
  * A job the check refuses may still be valid where the balls are loose: a flat section (its
  * ball is the larger semi-axis) or parts that come within about one piece of each other.
  * Work: K^2 + 4 K - 2 calls of ball() (4 350 at K = 64), fixed. */
 #define RASTER_OVERLAP_K 64u
 #define RASTER_OVERLAP_SAG CP_R(2.0)   /* capsule margin over the piece's midpoint sagitta */
+#define RASTER_OVERLAP_SEG 8u         /* points of a segment against the other */
 #define RASTER_OVERLAP_PI CP_R(3.1416) /* the neighbour arc, in units of r_max + tool */
 
 /* The ball of the section at u: c (mm) and r >= 0 (mm). Returns CP_OK or the model's

@@ -55,6 +55,7 @@ STATUS: dict[int, tuple[str, str]] = {
     44: ("MACHINE_RESET", "machine restarted"),
     45: ("ABOVE_SAFE", "point at or above SAFE"),
     46: ("SEAM", "radius or section law jumps at the seam"),
+    47: ("OVERLAP", "parts of the sweep overlap"),
 }
 
 #: NAME -> code
