@@ -109,24 +109,30 @@ static struct gsr_cfg ov_gc;
 /* A pipe along a helix (axis z, radius a, `pitch` mm per turn, `turns`) with elliptic
  * sections fn x fb, N0 frame (N0 = +z); LINES 4 from -90 to 90 degrees, TOL 20 um, a
  * ball of radius tool outside (CENTRE). */
-static int ov_gsr_helix(double a, double pitch, double turns, double fn, double fb,
-                        double tool, struct raster_overlap *o)
+/* ov_gc's centre: a helix about z of radius a turning w radians over u, rising `rise` mm,
+ * with the N0 frame N0 = +z (the rest of ov_gc zero) */
+static void ov_helix_centre(double a, double w, double rise)
 {
-    struct raster_cfg rc;
-    double w = turns * 2.0 * OV_PI;
     memset(&ov_gc, 0, sizeof ov_gc);
     ov_gc.centre = GSR_CENTRE_POLY;
     ov_gc.frame = GSR_FRAME_N0;
-    ov_gc.section = GSR_SECTION_RATIONAL;
     ov_gc.c[0][GSR_C] = (cp_real)a;
     ov_gc.c[0][GSR_W] = (cp_real)w;
     ov_gc.c[1][GSR_B] = (cp_real)a;
     ov_gc.c[1][GSR_W] = (cp_real)w;
-    ov_gc.c[2][1] = (cp_real)(pitch * turns);
+    ov_gc.c[2][1] = (cp_real)rise;
+    ov_gc.ref.z = CP_R(1.0);
+}
+
+static int ov_gsr_helix(double a, double pitch, double turns, double fn, double fb,
+                        double tool, struct raster_overlap *o)
+{
+    struct raster_cfg rc;
+    ov_helix_centre(a, turns * 2.0 * OV_PI, pitch * turns);
+    ov_gc.section = GSR_SECTION_RATIONAL;
     ov_gc.r[0][0] = (cp_real)fn;
     ov_gc.r[1][0] = (cp_real)fb;
     ov_gc.r[2][1] = CP_R(1.0);
-    ov_gc.ref.z = CP_R(1.0);
     memset(&rc, 0, sizeof rc);
     rc.mode = RASTER_LINES;
     rc.n = 4;
@@ -225,19 +231,12 @@ static double ov_random_job(unsigned *s, struct raster_cfg *rc)
     static const double tools[3] = {0.0, 0.3, 1.0};
     unsigned a, kind = test_prng(s) % 5u;
     double tool = tools[test_prng(s) % 3u];
-    memset(&ov_gc, 0, sizeof ov_gc);
-    ov_gc.section = (uint8_t)(test_prng(s) % 2u);
+    uint8_t section = (uint8_t)(test_prng(s) % 2u);
     if (kind < 3u) { /* a helix about z: radius, turns, pitch */
         double A = ov_uni(s, 3.0, 30.0), w = 2.0 * OV_PI * ov_uni(s, 0.2, 3.0);
-        ov_gc.centre = GSR_CENTRE_POLY;
-        ov_gc.frame = GSR_FRAME_N0;
-        ov_gc.c[0][GSR_C] = (cp_real)A;
-        ov_gc.c[0][GSR_W] = (cp_real)w;
-        ov_gc.c[1][GSR_B] = (cp_real)A;
-        ov_gc.c[1][GSR_W] = (cp_real)w;
-        ov_gc.c[2][1] = (cp_real)(ov_uni(s, 0.0, 12.0) * w / (2.0 * OV_PI));
-        ov_gc.ref.z = CP_R(1.0);
+        ov_helix_centre(A, w, ov_uni(s, 0.0, 12.0) * w / (2.0 * OV_PI));
     } else { /* a Bezier in a 40 mm box, RMF from a random reference */
+        memset(&ov_gc, 0, sizeof ov_gc);
         ov_gc.centre = GSR_CENTRE_BEZIER;
         ov_gc.frame = GSR_FRAME_RMF;
         for (a = 0; a < 3u; a++) {
@@ -250,6 +249,7 @@ static double ov_random_job(unsigned *s, struct raster_cfg *rc)
         ov_gc.ref.y = (cp_real)ov_uni(s, -1.0, 1.0);
         ov_gc.ref.z = (cp_real)ov_uni(s, -1.0, 1.0);
     }
+    ov_gc.section = section;
     ov_gc.r[0][0] = (cp_real)ov_uni(s, 0.3, 5.0);
     ov_gc.r[1][0] = (cp_real)ov_uni(s, 0.3, 5.0);
     ov_gc.r[0][1] = (cp_real)ov_uni(s, -0.2, 0.2);
