@@ -323,6 +323,10 @@ struct gsr_path {
  *   CP_ERR_FOLD      a streamed point or midpoint (or its tool centre) where the sweep folds,
  *                    or whose section folds somewhere (as gsr_init, at every walked u)
  *   CP_ERR_NUMERIC   a non-finite point
+ *   CP_ERR_OVERLAP   (last) parts of the pipe far apart along its centre meet, with the tool
+ *                    outside: raster_overlap_check (raster.h) on the balls (C, max(f_N, f_B))
+ *                    grown by 2 tool_r; it may refuse a valid pipe with flat sections or
+ *                    parts within about 1/64 of the centre of touching
  * Returns CP_OK; then gsr_path_next yields exactly gsr_path_count() points. */
 CP_MUST_CHECK int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom,
                                 const struct raster_cfg *raster);
