@@ -29,9 +29,12 @@ if [ -z "${CHECK_STEPS:-}" ]; then
 fi
 for s in $STEPS; do
     echo "== $s"
+    t0=$(date +%s)
     out=$($MAKE --no-print-directory "$s" 2>&1); rc=$?
+    t1=$(date +%s)
     printf '%s\n' "$out"
-    printf '== %s (rc=%s)\n%s\n' "$s" "$rc" "$out" >> "$LOG"
+    echo "== $s took $((t1 - t0)) s"
+    printf '== %s (rc=%s, %s s)\n%s\n' "$s" "$rc" "$((t1 - t0))" "$out" >> "$LOG"
     sums=$(printf '%s\n' "$out" | sed -n 's/^[A-Za-z0-9_.-]*: \([0-9][0-9]*\) passed, \([0-9][0-9]*\) failed$/\1 \2/p')
     if [ -z "$sums" ]; then
         if [ "$rc" -eq 0 ]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "check: step $s failed (rc=$rc)"; fi
