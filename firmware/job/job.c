@@ -375,8 +375,9 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
 
 /* ---- job.c's own commands: the raster, the output, SURFACE ---- */
 
-/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). */
-static int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
+/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). Not
+ * inlined: one call per refusal instead of its stores at each. */
+static CP_NOINLINE int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
 {
     a->bad = (uint8_t)bad;
     a->limit = limit;
@@ -438,10 +439,8 @@ static int job_raster(struct job *j, struct job_args *a)
  * canal's and the raster's settings and have bits stay) */
 static int job_surface(struct job *j, struct job_args *a)
 {
-    if (!path_has(a->value)) {
-        a->bad = JOB_ARG_WORD; /* a model not in this build ($I models=) */
-        a->limit = "$I models=";
-        return CP_ST_BAD_KEYWORD;
+    if (!path_has(a->value)) { /* a model not in this build ($I models=) */
+        return refuse(a, CP_ST_BAD_KEYWORD, JOB_ARG_WORD, "$I models=");
     }
     model_defaults(a->value, &j->geom);
     j->kind = (uint8_t)a->value;
