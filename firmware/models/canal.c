@@ -520,6 +520,15 @@ cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_r
            CP_R(2.0) * (f->r - rad_off) * (f->kappa * h * b + f->dpds * b * b);
 }
 
+int canal_regular(const struct canal_frame *f, cp_real h, cp_real b, cp_real tool_r)
+{
+    cp_real den = CANAL_CUSP_EPS * (f->q2 * b * b + h * h);
+    if (!(canal_regularity(f, h, b, CP_R(0.0)) > den)) {
+        return 0;
+    }
+    return !(tool_r > CP_R(0.0)) || canal_regularity(f, h, b, tool_r) > den;
+}
+
 void canal_label(const struct canal_frame *f0, cp_real u0, cp_real *alpha, cp_real *b)
 {
     cp_real sn, cs;
