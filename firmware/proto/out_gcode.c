@@ -226,15 +226,15 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
 
 int out_gcode_check(const struct job *job)
 {
+    const struct machine_dialect *d = machine_dialect(job->machine);
     if (!(job->feed[0] > CP_R(0.0))) {
         return CP_ST_NO_FEED;
     }
     if (!job->safe_set) {
         return CP_ST_NO_SAFE;
     }
-    if ((job->checksum && !machine_dialect(job->machine)->checksum) ||
-        (job->toolaxis == JOB_TOOLAXIS_AC && !machine_dialect(job->machine)->ac) ||
-        (job->toolaxis == JOB_TOOLAXIS_IJK && !machine_dialect(job->machine)->ijk)) {
+    if ((job->checksum && !d->checksum) || (job->toolaxis == JOB_TOOLAXIS_AC && !d->ac) ||
+        (job->toolaxis == JOB_TOOLAXIS_IJK && !d->ijk)) {
         return CP_ST_DIALECT;
     }
     return CP_ST_OK;
