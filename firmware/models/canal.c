@@ -170,9 +170,10 @@ static unsigned first_angle(uint8_t curve)
 
 /* Copy the n used parameters v[0..n) into out[0..cnt) (the unused ones 0) and check them:
  * every used one finite (CP_ERR_NONFINITE, which wins over a range error), then in range
- * (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, from index `special` on |v| <= smax. */
-static int copy_params(cp_real *out, unsigned cnt, const cp_real *v, unsigned n, unsigned special,
-                       cp_real smax)
+ * (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, from index `special` on |v| <= smax. (Not
+ * inlined: one copy serves the curve's parameters and the law's.) */
+static CP_NOINLINE int copy_params(cp_real *out, unsigned cnt, const cp_real *v, unsigned n,
+                                   unsigned special, cp_real smax)
 {
     unsigned i;
     int err = CP_OK;
