@@ -141,7 +141,8 @@ int job_ready(const struct job *j)
     }
 }
 
-void job_init(struct job *j)
+/* (not inlined: one copy for proto_init and JOB CLEAR) */
+CP_NOINLINE void job_init(struct job *j)
 {
     /* everything 0 first: LINE, CONST, all parameters, LINES, OUT_SURFACE, ANGLE labels,
      * span LINES, u0 = u1 = 0, steps and substeps derived, no tool, no feed, nothing

@@ -360,8 +360,9 @@ static void machine_poll(struct proto *p, uint32_t now)
     }
 }
 
-/* Keep the machine's line that stopped a run, for the host's reply. */
-static void keep_fault(struct proto *p, const char *line, size_t len)
+/* Keep the machine's line that stopped a run, for the host's reply. (Not inlined: one copy
+ * for the machine link's lines and the host link's.) */
+static CP_NOINLINE void keep_fault(struct proto *p, const char *line, size_t len)
 {
     size_t i;
     for (i = 0; i < len && i < PROTO_FAULT_MAX; i++) {
