@@ -28,19 +28,14 @@ static const char *const item_text[] = {
 /* G54 .. G59 */
 static const char *const wcs_text[6] = {"G54", "G55", "G56", "G57", "G58", "G59"};
 
-/* Append a word (" X") and its number v with 4 decimals: a coordinate in mm (0.1 um), or
- * a component of a unit vector (" I"). */
-static void put_mm(char *out, size_t cap, size_t *pos, const char *word, cp_real v)
+/* Append a word and its number v with 4 decimals (" X": a coordinate in mm, 0.1 um;
+ * " I": a component of a unit vector) or 3 (" A": an angle in degrees). */
+static void put_word(char *out, size_t cap, size_t *pos, const char *word, cp_real v,
+                     unsigned decimals)
 {
     (void)fmt_str(out, cap, pos, word);
-    (void)fmt_fixed(out, cap, pos, out_quantize(v, CP_R(10000.0)), 4u);
-}
-
-/* Append a word (" A") and its angle v in degrees with 3 decimals. */
-static void put_deg(char *out, size_t cap, size_t *pos, const char *word, cp_real v)
-{
-    (void)fmt_str(out, cap, pos, word);
-    (void)fmt_fixed(out, cap, pos, out_quantize(v, CP_R(1000.0)), 3u);
+    (void)fmt_fixed(out, cap, pos,
+                    out_quantize(v, decimals == 3u ? CP_R(1000.0) : CP_R(10000.0)), decimals);
 }
 
 /* Append a field of the [RUN:...] line: its key (",n=") and value. */
@@ -106,13 +101,13 @@ static int put_axis(struct out_gcode *g, const struct out_run *run, struct path 
     toolaxis_of(&g->axis, &pt->n, &d, &a);
     if (job->toolaxis == JOB_TOOLAXIS_AC) {
         toolaxis_ac(&a, &A, &C);
-        put_deg(out, cap, pos, " A", A);
-        put_deg(out, cap, pos, " C", C);
+        put_word(out, cap, pos, " A", A, 3u);
+        put_word(out, cap, pos, " C", C, 3u);
         return CP_OK;
     }
-    put_mm(out, cap, pos, " I", a.x);
-    put_mm(out, cap, pos, " J", a.y);
-    put_mm(out, cap, pos, " K", a.z);
+    put_word(out, cap, pos, " I", a.x, 4u);
+    put_word(out, cap, pos, " J", a.y, 4u);
+    put_word(out, cap, pos, " K", a.z, 4u);
     return CP_OK;
 }
 
@@ -133,9 +128,9 @@ static int put_point(struct out_gcode *g, char *out, size_t cap, size_t *pos,
         g->above_safe = 1u;
         return CP_ERR_RANGE;
     }
-    put_mm(out, cap, pos, "G1 X", pt.p.x);
-    put_mm(out, cap, pos, " Y", pt.p.y);
-    put_mm(out, cap, pos, " Z", pt.p.z);
+    put_word(out, cap, pos, "G1 X", pt.p.x, 4u);
+    put_word(out, cap, pos, " Y", pt.p.y, 4u);
+    put_word(out, cap, pos, " Z", pt.p.z, 4u);
     if (job->toolaxis != JOB_TOOLAXIS_OFF) {
         e = put_axis(g, run, path, job, k, &pt, out, cap, pos);
         if (e != CP_OK) {
@@ -168,15 +163,15 @@ static int put_item(char *out, size_t cap, size_t *pos, const struct out_run *ru
         (void)fmt_real(out, cap, pos, job->spindle, CP_R(1.0));
         break;
     case OUT_GCODE_SAFE:
-        put_mm(out, cap, pos, " Z", job->safe);
+        put_word(out, cap, pos, " Z", job->safe, 4u);
         break;
     case OUT_GCODE_ABOVE:
         e = out_point(path, &run->place, run->start_k, &pt);
         if (e != CP_OK) {
             return e;
         }
-        put_mm(out, cap, pos, " X", pt.p.x);
-        put_mm(out, cap, pos, " Y", pt.p.y);
+        put_word(out, cap, pos, " X", pt.p.x, 4u);
+        put_word(out, cap, pos, " Y", pt.p.y, 4u);
         break;
     case OUT_GCODE_END:
         (void)fmt_str(out, cap, pos, machine_dialect(job->machine)->end);
