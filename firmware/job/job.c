@@ -648,6 +648,11 @@ void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
     }
 }
 
+void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value)
+{
+    job_dump_args(a, c, job_word_of(c, value, 0u));
+}
+
 /* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at
  * the default. */
 static const uint8_t dump_cmds[] = {
@@ -661,7 +666,7 @@ static const uint8_t dump_cmds[] = {
  * value, SKIP at the default 0 (JOB_GCODE, off, PATH_CANAL, G54, GENERIC, HOST). */
 static int dump_word(struct job_args *a, unsigned value)
 {
-    a->word = job_word_of(a->cmd, value, 0u);
+    job_dump_word(a, a->cmd, value);
     return value == 0u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
 }
 
@@ -748,7 +753,7 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
     case JOB_CMD_MACHINE:
         return dump_word(a, j->machine);
     case JOB_CMD_TOOLAXIS: /* TOOLAXIS AC|IJK lead side (OFF is the default) */
-        job_dump_args(a, JOB_CMD_TOOLAXIS, job_word_of(JOB_CMD_TOOLAXIS, j->toolaxis, 0u));
+        job_dump_word(a, JOB_CMD_TOOLAXIS, j->toolaxis);
         a->v[0] = j->lead;
         a->v[1] = j->side;
         return j->toolaxis == JOB_TOOLAXIS_OFF ? JOB_DUMP_SKIP : JOB_DUMP_LINE;

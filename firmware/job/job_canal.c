@@ -70,7 +70,7 @@ int job_canal_dump(const struct job *j, unsigned i, struct job_args *a)
         return JOB_DUMP_END;
     }
     if (i == 0u) {
-        job_dump_args(a, CANAL_CMD_CURVE, job_word_of(CANAL_CMD_CURVE, surf->curve, 0u));
+        job_dump_word(a, CANAL_CMD_CURVE, surf->curve);
         for (k = 0; k < a->na; k++) {
             a->v[k] = surf->cp[k];
         }
@@ -80,7 +80,7 @@ int job_canal_dump(const struct job *j, unsigned i, struct job_args *a)
         }
         return (j->have & JOB_HAVE_CURVE) != 0u ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
     }
-    job_dump_args(a, CANAL_CMD_RADIUS, job_word_of(CANAL_CMD_RADIUS, surf->radius, 0u));
+    job_dump_word(a, CANAL_CMD_RADIUS, surf->radius);
     for (k = 0; k < a->na; k++) {
         a->v[k] = surf->rp[k];
     }
