@@ -653,6 +653,14 @@ void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value)
     job_dump_args(a, c, job_word_of(c, value, 0u));
 }
 
+void job_dump_numbers(struct job_args *a, const cp_real *v)
+{
+    unsigned i;
+    for (i = 0; i < a->na && i < JOB_MAX_NUMBERS; i++) {
+        a->v[i] = v[i];
+    }
+}
+
 /* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at
  * the default. */
 static const uint8_t dump_cmds[] = {
@@ -716,9 +724,7 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
         return dump_number(a, c->tol, c->tol == CP_R(0.001));
     case JOB_CMD_FEED: /* FEED f plunge link */
         a->na = 3u;
-        a->v[0] = j->feed[0];
-        a->v[1] = j->feed[1];
-        a->v[2] = j->feed[2];
+        job_dump_numbers(a, j->feed);
         return j->feed[0] == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
     case JOB_CMD_RXBUF: /* RXBUF n (0: the dialect's) */
         a->u = j->rxbuf;

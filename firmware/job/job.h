@@ -329,6 +329,9 @@ void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w);
  * the dump of a job field that a word sets. */
 void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value);
 
+/* The dumped line's numbers: a->v[0..a->na) = v[0..a->na) (a->na as set above). */
+void job_dump_numbers(struct job_args *a, const cp_real *v);
+
 /* The enum job_shape of command c (commands.def's SHAPE). */
 unsigned job_shape_of(enum job_cmd c);
 

@@ -149,11 +149,8 @@ int job_gsr_command(struct job *j, struct job_args *a)
  * command. */
 static void dump_fn(struct job_args *a, const cp_real *fn)
 {
-    unsigned i;
     a->na = GSR_FN;
-    for (i = 0; i < GSR_FN; i++) {
-        a->v[i] = fn[i];
-    }
+    job_dump_numbers(a, fn);
     a->scale[GSR_W] = JOB_SCALE_DEG;
 }
 
