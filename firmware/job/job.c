@@ -141,7 +141,8 @@ int job_ready(const struct job *j)
     }
 }
 
-void job_init(struct job *j)
+/* (not inlined: one copy for proto_init and JOB CLEAR) */
+CP_NOINLINE void job_init(struct job *j)
 {
     /* everything 0 first: LINE, CONST, all parameters, LINES, OUT_SURFACE, ANGLE labels,
      * span LINES, u0 = u1 = 0, steps and substeps derived, no tool, no feed, nothing
@@ -375,8 +376,9 @@ static int job_args_of(const struct job_tokens *t, enum job_cmd c, struct job_ar
 
 /* ---- job.c's own commands: the raster, the output, SURFACE ---- */
 
-/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). */
-static int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
+/* A hook's refusal: argument `bad` (JOB_ARG_*) broke `limit` (NULL: none given). Not
+ * inlined: one call per refusal instead of its stores at each. */
+static CP_NOINLINE int refuse(struct job_args *a, int st, unsigned bad, const char *limit)
 {
     a->bad = (uint8_t)bad;
     a->limit = limit;
@@ -438,10 +440,8 @@ static int job_raster(struct job *j, struct job_args *a)
  * canal's and the raster's settings and have bits stay) */
 static int job_surface(struct job *j, struct job_args *a)
 {
-    if (!path_has(a->value)) {
-        a->bad = JOB_ARG_WORD; /* a model not in this build ($I models=) */
-        a->limit = "$I models=";
-        return CP_ST_BAD_KEYWORD;
+    if (!path_has(a->value)) { /* a model not in this build ($I models=) */
+        return refuse(a, CP_ST_BAD_KEYWORD, JOB_ARG_WORD, "$I models=");
     }
     model_defaults(a->value, &j->geom);
     j->kind = (uint8_t)a->value;
@@ -648,6 +648,19 @@ void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w)
     }
 }
 
+void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value)
+{
+    job_dump_args(a, c, job_word_of(c, value, 0u));
+}
+
+void job_dump_numbers(struct job_args *a, const cp_real *v)
+{
+    unsigned i;
+    for (i = 0; i < a->na && i < JOB_MAX_NUMBERS; i++) {
+        a->v[i] = v[i];
+    }
+}
+
 /* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at
  * the default. */
 static const uint8_t dump_cmds[] = {
@@ -661,7 +674,7 @@ static const uint8_t dump_cmds[] = {
  * value, SKIP at the default 0 (JOB_GCODE, off, PATH_CANAL, G54, GENERIC, HOST). */
 static int dump_word(struct job_args *a, unsigned value)
 {
-    a->word = job_word_of(a->cmd, value, 0u);
+    job_dump_word(a, a->cmd, value);
     return value == 0u ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
 }
 
@@ -711,9 +724,7 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
         return dump_number(a, c->tol, c->tol == CP_R(0.001));
     case JOB_CMD_FEED: /* FEED f plunge link */
         a->na = 3u;
-        a->v[0] = j->feed[0];
-        a->v[1] = j->feed[1];
-        a->v[2] = j->feed[2];
+        job_dump_numbers(a, j->feed);
         return j->feed[0] == CP_R(0.0) ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
     case JOB_CMD_RXBUF: /* RXBUF n (0: the dialect's) */
         a->u = j->rxbuf;
@@ -748,7 +759,7 @@ static int dump_own(const struct job *j, unsigned i, struct job_args *a)
     case JOB_CMD_MACHINE:
         return dump_word(a, j->machine);
     case JOB_CMD_TOOLAXIS: /* TOOLAXIS AC|IJK lead side (OFF is the default) */
-        job_dump_args(a, JOB_CMD_TOOLAXIS, job_word_of(JOB_CMD_TOOLAXIS, j->toolaxis, 0u));
+        job_dump_word(a, JOB_CMD_TOOLAXIS, j->toolaxis);
         a->v[0] = j->lead;
         a->v[1] = j->side;
         return j->toolaxis == JOB_TOOLAXIS_OFF ? JOB_DUMP_SKIP : JOB_DUMP_LINE;

@@ -325,6 +325,13 @@ enum job_word job_word_of(enum job_cmd c, unsigned value, unsigned option);
  * na = the word's numbers (0 without a word), v[] 0, every scale JOB_SCALE_ONE. */
 void job_dump_args(struct job_args *a, enum job_cmd c, enum job_word w);
 
+/* job_dump_args for command c with its word (option 0) whose VALUE is value (job_word_of):
+ * the dump of a job field that a word sets. */
+void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value);
+
+/* The dumped line's numbers: a->v[0..a->na) = v[0..a->na) (a->na as set above). */
+void job_dump_numbers(struct job_args *a, const cp_real *v);
+
 /* The enum job_shape of command c (commands.def's SHAPE). */
 unsigned job_shape_of(enum job_cmd c);
 

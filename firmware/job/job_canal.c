@@ -65,24 +65,19 @@ CP_NOINLINE int job_canal_command(struct job *j, struct job_args *a)
 int job_canal_dump(const struct job *j, unsigned i, struct job_args *a)
 {
     const struct canal_cfg *surf = &j->canal;
-    unsigned k;
     if (i >= JOB_CANAL_ITEMS) {
         return JOB_DUMP_END;
     }
     if (i == 0u) {
-        job_dump_args(a, CANAL_CMD_CURVE, job_word_of(CANAL_CMD_CURVE, surf->curve, 0u));
-        for (k = 0; k < a->na; k++) {
-            a->v[k] = surf->cp[k];
-        }
+        job_dump_word(a, CANAL_CMD_CURVE, surf->curve);
+        job_dump_numbers(a, surf->cp);
         if (surf->curve == CANAL_ARC || surf->curve == CANAL_ELLIPSE) {
             a->scale[a->na - 2u] = JOB_SCALE_DEG;
             a->scale[a->na - 1u] = JOB_SCALE_DEG;
         }
         return (j->have & JOB_HAVE_CURVE) != 0u ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
     }
-    job_dump_args(a, CANAL_CMD_RADIUS, job_word_of(CANAL_CMD_RADIUS, surf->radius, 0u));
-    for (k = 0; k < a->na; k++) {
-        a->v[k] = surf->rp[k];
-    }
+    job_dump_word(a, CANAL_CMD_RADIUS, surf->radius);
+    job_dump_numbers(a, surf->rp);
     return (j->have & JOB_HAVE_RADIUS) != 0u ? JOB_DUMP_LINE : JOB_DUMP_SKIP;
 }

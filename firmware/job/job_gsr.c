@@ -149,11 +149,8 @@ int job_gsr_command(struct job *j, struct job_args *a)
  * command. */
 static void dump_fn(struct job_args *a, const cp_real *fn)
 {
-    unsigned i;
     a->na = GSR_FN;
-    for (i = 0; i < GSR_FN; i++) {
-        a->v[i] = fn[i];
-    }
+    job_dump_numbers(a, fn);
     a->scale[GSR_W] = JOB_SCALE_DEG;
 }
 
@@ -173,12 +170,12 @@ static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a
         return c->centre == GSR_CENTRE_BEZIER && (c->set & (1u << i)) != 0u;
     }
     if (i < 7u) { /* CENTER X|Y|Z */
-        job_dump_args(a, GSR_CMD_CENTER, job_word_of(GSR_CMD_CENTER, i - 4u, 0u));
+        job_dump_word(a, GSR_CMD_CENTER, i - 4u);
         dump_fn(a, c->c[i - 4u]);
         return c->centre == GSR_CENTRE_POLY && (c->set & SET_CENTER) != 0u;
     }
     if (i < 10u) { /* RADII N|B|T */
-        job_dump_args(a, GSR_CMD_RADII, job_word_of(GSR_CMD_RADII, i - 7u, 0u));
+        job_dump_word(a, GSR_CMD_RADII, i - 7u);
         dump_fn(a, c->r[i - 7u]);
         if (i == 9u) { /* f_t(u) = u is the default */
             k = 0;
@@ -191,14 +188,14 @@ static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a
     }
     if (i < 12u) { /* FRAME [N0 ref], FRAME */
         unsigned f = i == 10u ? GSR_FRAME_N0 : c->frame;
-        job_dump_args(a, GSR_CMD_FRAME, job_word_of(GSR_CMD_FRAME, f, 0u));
+        job_dump_word(a, GSR_CMD_FRAME, f);
         a->v[0] = c->ref.x;
         a->v[1] = c->ref.y;
         a->v[2] = c->ref.z;
         return (c->set & SET_FRAME) != 0u &&
                (i == 11u || (ref && c->frame != GSR_FRAME_N0 && c->frame != GSR_FRAME_RMF));
     }
-    job_dump_args(a, GSR_CMD_FORM, job_word_of(GSR_CMD_FORM, c->section, 0u));
+    job_dump_word(a, GSR_CMD_FORM, c->section);
     return c->section != GSR_SECTION_RATIONAL;
 }
 

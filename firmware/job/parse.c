@@ -141,7 +141,8 @@ int parse_real(const char *s, size_t n, cp_real *out)
     return CP_ST_OK;
 }
 
-int parse_uint(const char *s, size_t n, uint32_t max, uint32_t *out)
+/* (not inlined: one copy for the job's arguments and the machine's Resend numbers) */
+CP_NOINLINE int parse_uint(const char *s, size_t n, uint32_t max, uint32_t *out)
 {
     size_t i;
     uint32_t v = 0;

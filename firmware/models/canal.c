@@ -170,9 +170,10 @@ static unsigned first_angle(uint8_t curve)
 
 /* Copy the n used parameters v[0..n) into out[0..cnt) (the unused ones 0) and check them:
  * every used one finite (CP_ERR_NONFINITE, which wins over a range error), then in range
- * (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, from index `special` on |v| <= smax. */
-static int copy_params(cp_real *out, unsigned cnt, const cp_real *v, unsigned n, unsigned special,
-                       cp_real smax)
+ * (CP_ERR_RANGE): |v| <= CANAL_COORD_MAX, from index `special` on |v| <= smax. (Not
+ * inlined: one copy serves the curve's parameters and the law's.) */
+static CP_NOINLINE int copy_params(cp_real *out, unsigned cnt, const cp_real *v, unsigned n,
+                                   unsigned special, cp_real smax)
 {
     unsigned i;
     int err = CP_OK;
@@ -518,6 +519,15 @@ cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_r
 {
     return f->q2 * b * b + h * h -
            CP_R(2.0) * (f->r - rad_off) * (f->kappa * h * b + f->dpds * b * b);
+}
+
+int canal_regular(const struct canal_frame *f, cp_real h, cp_real b, cp_real tool_r)
+{
+    cp_real den = CANAL_CUSP_EPS * (f->q2 * b * b + h * h);
+    if (!(canal_regularity(f, h, b, CP_R(0.0)) > den)) {
+        return 0;
+    }
+    return !(tool_r > CP_R(0.0)) || canal_regularity(f, h, b, tool_r) > den;
 }
 
 void canal_label(const struct canal_frame *f0, cp_real u0, cp_real *alpha, cp_real *b)

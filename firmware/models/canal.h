@@ -196,6 +196,13 @@ static CP_ALWAYS_INLINE void canal_point_inline(const struct canal_frame *f, cp_
  * > 0 regular; <= 0 on or beyond a cuspidal edge (MATH-canal §5.2). */
 cp_real canal_regularity(const struct canal_frame *f, cp_real h, cp_real b, cp_real rad_off);
 
+/* The cusp test of the models that stream canal points (canal_path.c, drc.c): 1 if label
+ * (h, b) at frame f is regular with margin, canal_regularity > CANAL_CUSP_EPS (q^2 b^2 + h^2),
+ * on the surface and, with a tool (tool_r > 0), on the tool centre's offset surface (rad_off
+ * = tool_r); 0 on or near a cuspidal edge (or a NaN). */
+#define CANAL_CUSP_EPS CP_R(1e-4)
+int canal_regular(const struct canal_frame *f, cp_real h, cp_real b, cp_real tool_r);
+
 /* Homogeneous label of the line that starts at contact-frame angle u0 (radians,
  * |u0| <= 2 pi) on the circle of frame f0 (the first circle): alpha = q0 cos(u0/2),
  * b = sin(u0/2). */

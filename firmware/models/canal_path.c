@@ -25,7 +25,6 @@
 #define RICH_COARSE 64u      /* Richardson estimate: coarse panel count over [t0, t1] */
 #define SAG_MARGIN CP_R(0.9) /* measured midpoint sagitta must be <= 0.9 tol */
 #define LINK_PROBES 16u      /* probe spacing 1/16 along each link arc and circle */
-#define CUSP_EPS CP_R(1e-4)  /* D b^2 <= CUSP_EPS (q^2 b^2 + h^2): on or near an edge */
 
 static cp_real t_at(const struct canal_path *tp, uint32_t a, cp_real hp)
 {
@@ -120,14 +119,7 @@ static cp_real sag3(const struct canal_path *tp, const struct canal_frame *f, co
 /* Is label (h, b) regular on the surface and (with a tool) on the tool-centre surface? */
 static int regular(const struct canal_path *tp, const struct canal_frame *f, cp_real h, cp_real b)
 {
-    cp_real den = f->q2 * b * b + h * h;
-    if (!(canal_regularity(f, h, b, CP_R(0.0)) > CUSP_EPS * den)) {
-        return 0;
-    }
-    if (tp->tool_r > CP_R(0.0) && !(canal_regularity(f, h, b, tp->tool_r) > CUSP_EPS * den)) {
-        return 0;
-    }
-    return 1;
+    return canal_regular(f, h, b, tp->tool_r);
 }
 
 /* Homogeneous label of the line starting at angle u on the FIRST circle:

@@ -945,7 +945,6 @@ int drc_in_triangle(const struct drc_pt *a, const struct drc_pt *b, const struct
 
 
 #define DRC_SAG_MARGIN CP_R(0.9) /* measured sagitta must be <= 0.9 tol (canal: same) */
-#define DRC_CUSP_EPS CP_R(1e-4)  /* D b^2 <= eps (q^2 b^2 + h^2): on or near an edge */
 
 /* Radius law over sigma in [0, 1] with derivatives in the arc length s = sigma s_tot:
  * r[0] = R, r[1] = dR/ds, r[2] = d2R/ds2. COS: R = b cos(2 pi k sigma) + c; the others
@@ -1159,7 +1158,7 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     struct canal_point cp;
     /* the radius offset: 0 for OUT_SURFACE, else tool_r; EDGE mode (the only user) has
      * tool_r == 0 exactly with OUT_SURFACE (init), and + ZERO turns a -0 into +0 */
-    cp_real h, b, den, off = rc->tool_r + ZERO;
+    cp_real h, b, off = rc->tool_r + ZERO;
     pt->line = -1;
     pt->t = (jl & 1u) ? ZERO : ONE;
     if (r > it->head.steps) {
@@ -1203,11 +1202,7 @@ static CP_NOINLINE int point_at(struct drc_path *it, uint32_t jl, uint32_t r,
     if (rc->output == RASTER_OUT_TIP) {
         pt->p.z -= off;
     }
-    den = DRC_CUSP_EPS * (f.q2 * b * b + h * h);
-    if (!(canal_regularity(&f, h, b, ZERO) > den && canal_regularity(&f, h, b, rc->tool_r) > den)) {
-        return CP_ERR_CUSP;
-    }
-    return CP_OK;
+    return canal_regular(&f, h, b, rc->tool_r) ? CP_OK : CP_ERR_CUSP;
 }
 
 /* 1 if the point's position is finite (finite coordinates, |p| <= ~1e5 mm, cannot

@@ -19,14 +19,18 @@ int path_has(unsigned kind)
     }
 }
 
-/* The stream header of a model whose init or check succeeded. */
-#define PATH_INFO_ROW(name)                                                                        \
-    p->info.count = name##_path_count(&p->u.name);                                                 \
-    p->info.n = p->u.name.head.n;                                                                  \
-    p->info.steps = p->u.name.head.steps;                                                          \
-    p->info.link = p->u.name.head.link;                                                            \
-    p->info.mode = p->u.name.head.mode;                                                            \
-    break;
+/* The raster head of the iterator of p->kind (NULL for a kind not compiled in): its
+ * shape (the stream header) and its position. */
+static const struct raster_head *head_of(const struct path *p)
+{
+    switch (p->kind) {
+#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : return &p->u.name.head;)
+#include "models.def"
+#undef CP_MODEL
+    default:
+        return NULL;
+    }
+}
 
 /* The whole init of a model without a sliced check (on error its count is 0). */
 #define PATH_INIT_ROW(name)                                                                        \
@@ -59,6 +63,7 @@ int path_check_begin(struct path *p, struct path_check *c, uint8_t kind,
 int path_check_step(struct path *p, struct path_check *c, const struct raster_cfg *raster,
                     const union path_geom *geom)
 {
+    const struct raster_head *h;
     int err = CP_ERR_INVAL;
     if (p->kind == PATH_CANAL) { /* the sliced check (canal_path.h) */
         err = canal_path_check_step(&p->u.canal, raster, &c->u.canal);
@@ -77,13 +82,12 @@ int path_check_step(struct path *p, struct path_check *c, const struct raster_cf
     if (err != CP_OK) {
         return err;
     }
-    switch (p->kind) {
-#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : PATH_INFO_ROW(name))
-#include "models.def"
-#undef CP_MODEL
-    default:
-        break;
-    }
+    h = head_of(p); /* the stream header: the model's raster head (not NULL: path_has) */
+    p->info.count = h->count;
+    p->info.n = h->n;
+    p->info.steps = (uint16_t)h->steps;
+    p->info.link = h->link;
+    p->info.mode = h->mode;
     return CP_OK;
 }
 
@@ -119,13 +123,8 @@ uint32_t path_count(const struct path *p)
 
 uint32_t path_pos(const struct path *p)
 {
-    switch (p->kind) {
-#define CP_MODEL(NAME, name, WITH, WORD) PATH_IF(WITH, case PATH_##NAME : return p->u.name.head.k;)
-#include "models.def"
-#undef CP_MODEL
-    default:
-        return 0;
-    }
+    const struct raster_head *h = head_of(p);
+    return h != NULL ? h->k : 0u;
 }
 
 int path_next(struct path *p, struct raster_pt *pt)

@@ -16,8 +16,8 @@ const struct machine_dialect *machine_dialect(unsigned m)
     return &dialects[m < (unsigned)JOB_MACHINES ? m : (unsigned)JOB_MACHINE_GENERIC];
 }
 
-/* 1 if line[0..len) starts with the NUL-terminated w. */
-static int starts(const char *line, size_t len, const char *w)
+/* The length of the NUL-terminated w (not empty) if line[0..len) starts with it, else 0. */
+static size_t starts(const char *line, size_t len, const char *w)
 {
     size_t i = 0;
     while (w[i] != '\0') {
@@ -26,7 +26,7 @@ static int starts(const char *line, size_t len, const char *w)
         }
         i++;
     }
-    return 1;
+    return i;
 }
 
 /* 1 if line[0..len) contains the NUL-terminated w (len and w are short: a line). */
@@ -34,7 +34,7 @@ static int contains(const char *line, size_t len, const char *w)
 {
     size_t i;
     for (i = 0; i < len; i++) {
-        if (starts(line + i, len - i, w)) {
+        if (starts(line + i, len - i, w) != 0u) {
             return 1;
         }
     }
@@ -60,41 +60,49 @@ static uint32_t resend_number(const char *s, size_t len)
     return n;
 }
 
+/* The answers known by how they start (machine.h), tried in this order. Marlin's
+ * "Error:" is a RETRY only when it names the "Last Line" (its line-number and checksum
+ * errors: a Resend follows); any other Error: (kill(), MINTEMP, ...) stops the machine. */
+static const struct {
+    const char *start;
+    uint8_t kind; /* enum machine_reply */
+} answers[] = {
+    {"error:", MACHINE_ERROR},     {"ALARM:", MACHINE_ALARM},   {"!!", MACHINE_ALARM},
+    {"Error:", MACHINE_RETRY},     {"Resend:", MACHINE_RESEND}, {"rs ", MACHINE_RESEND},
+    {"echo:busy:", MACHINE_ALIVE}, {"busy:", MACHINE_ALIVE},    {"Grbl ", MACHINE_RESET},
+};
+
 enum machine_reply machine_reply(unsigned m, const char *line, size_t len, uint32_t *num)
 {
+    size_t i, n;
     *num = 0u;
-    if (len == 2u && starts(line, len, "ok")) {
+    if (len == 2u && starts(line, len, "ok") != 0u) {
         return MACHINE_OK;
     }
     /* Marlin's ok carries ADVANCED_OK's " N<n> P<p> B<b>" or a temperature report; grbl's
      * is the whole line, and grbl sends no other line starting "ok " */
-    if (m != (unsigned)JOB_MACHINE_GRBL && starts(line, len, "ok ")) {
+    if (m != (unsigned)JOB_MACHINE_GRBL && starts(line, len, "ok ") != 0u) {
         return MACHINE_OK;
     }
-    if (starts(line, len, "error:")) {
-        return MACHINE_ERROR;
+    for (i = 0; i < sizeof answers / sizeof answers[0]; i++) {
+        n = starts(line, len, answers[i].start);
+        if (n == 0u) {
+            continue;
+        }
+        switch ((enum machine_reply)answers[i].kind) {
+        case MACHINE_RETRY:
+            return contains(line, len, "Last Line") ? MACHINE_RETRY : MACHINE_ERROR;
+        case MACHINE_RESEND:
+            *num = resend_number(line + n, len - n);
+            return MACHINE_RESEND;
+        default:
+            return (enum machine_reply)answers[i].kind;
+        }
     }
-    if (starts(line, len, "ALARM:") || starts(line, len, "!!")) {
-        return MACHINE_ALARM;
+    if (len >= 2u && line[0] == '<' && line[len - 1u] == '>') {
+        return MACHINE_ALIVE; /* grbl's status report */
     }
-    if (starts(line, len, "Error:")) {
-        /* Marlin's line-number and checksum errors end "Last Line: n" and a Resend
-         * follows; any other Error: (kill(), MINTEMP, ...) stops the machine */
-        return contains(line, len, "Last Line") ? MACHINE_RETRY : MACHINE_ERROR;
-    }
-    if (starts(line, len, "Resend:")) {
-        *num = resend_number(line + 7, len - 7u);
-        return MACHINE_RESEND;
-    }
-    if (starts(line, len, "rs ")) {
-        *num = resend_number(line + 3, len - 3u);
-        return MACHINE_RESEND;
-    }
-    if (starts(line, len, "echo:busy:") || starts(line, len, "busy:") ||
-        (len >= 2u && line[0] == '<' && line[len - 1u] == '>')) {
-        return MACHINE_ALIVE;
-    }
-    if (starts(line, len, "Grbl ") || (len == 5u && starts(line, len, "start"))) {
+    if (len == 5u && starts(line, len, "start") != 0u) {
         return MACHINE_RESET;
     }
     return MACHINE_OTHER;

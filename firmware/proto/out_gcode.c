@@ -21,17 +21,28 @@ static const char *const item_text[] = {
     [OUT_GCODE_M110] = "M110 N0",      [OUT_GCODE_MODES] = "G21 G90 G17 G94 ",
     [OUT_GCODE_G21] = "G21",           [OUT_GCODE_G90] = "G90",
     [OUT_GCODE_WCS] = "",              [OUT_GCODE_SPINDLE_ON] = "M3 S",
-    [OUT_GCODE_SAFE] = "G0 Z",         [OUT_GCODE_ABOVE] = "G0 X",
+    [OUT_GCODE_SAFE] = "G0",           [OUT_GCODE_ABOVE] = "G0",
     [OUT_GCODE_SPINDLE_OFF] = "M5",    [OUT_GCODE_END] = "",
 };
 
 /* G54 .. G59 */
 static const char *const wcs_text[6] = {"G54", "G55", "G56", "G57", "G58", "G59"};
 
-/* Append a coordinate in mm with 4 decimals (0.1 um). */
-static void put_mm(char *out, size_t cap, size_t *pos, cp_real v)
+/* Append a word and its number v with 4 decimals (" X": a coordinate in mm, 0.1 um;
+ * " I": a component of a unit vector) or 3 (" A": an angle in degrees). */
+static void put_word(char *out, size_t cap, size_t *pos, const char *word, cp_real v,
+                     unsigned decimals)
 {
-    (void)fmt_fixed(out, cap, pos, out_quantize(v, CP_R(10000.0)), 4u);
+    (void)fmt_str(out, cap, pos, word);
+    (void)fmt_fixed(out, cap, pos,
+                    out_quantize(v, decimals == 3u ? CP_R(1000.0) : CP_R(10000.0)), decimals);
+}
+
+/* Append a field of the [RUN:...] line: its key (",n=") and value. */
+static void put_field(char *out, size_t cap, size_t *pos, const char *key, uint32_t v)
+{
+    (void)fmt_str(out, cap, pos, key);
+    (void)fmt_u32(out, cap, pos, v);
 }
 
 /* The feed of point k of a run that starts at start_k: the plunge's for the first, the
@@ -90,18 +101,13 @@ static int put_axis(struct out_gcode *g, const struct out_run *run, struct path 
     toolaxis_of(&g->axis, &pt->n, &d, &a);
     if (job->toolaxis == JOB_TOOLAXIS_AC) {
         toolaxis_ac(&a, &A, &C);
-        (void)fmt_str(out, cap, pos, " A");
-        (void)fmt_fixed(out, cap, pos, out_quantize(A, CP_R(1000.0)), 3u);
-        (void)fmt_str(out, cap, pos, " C");
-        (void)fmt_fixed(out, cap, pos, out_quantize(C, CP_R(1000.0)), 3u);
+        put_word(out, cap, pos, " A", A, 3u);
+        put_word(out, cap, pos, " C", C, 3u);
         return CP_OK;
     }
-    (void)fmt_str(out, cap, pos, " I");
-    (void)fmt_fixed(out, cap, pos, out_quantize(a.x, CP_R(10000.0)), 4u);
-    (void)fmt_str(out, cap, pos, " J");
-    (void)fmt_fixed(out, cap, pos, out_quantize(a.y, CP_R(10000.0)), 4u);
-    (void)fmt_str(out, cap, pos, " K");
-    (void)fmt_fixed(out, cap, pos, out_quantize(a.z, CP_R(10000.0)), 4u);
+    put_word(out, cap, pos, " I", a.x, 4u);
+    put_word(out, cap, pos, " J", a.y, 4u);
+    put_word(out, cap, pos, " K", a.z, 4u);
     return CP_OK;
 }
 
@@ -122,12 +128,9 @@ static int put_point(struct out_gcode *g, char *out, size_t cap, size_t *pos,
         g->above_safe = 1u;
         return CP_ERR_RANGE;
     }
-    (void)fmt_str(out, cap, pos, "G1 X");
-    put_mm(out, cap, pos, pt.p.x);
-    (void)fmt_str(out, cap, pos, " Y");
-    put_mm(out, cap, pos, pt.p.y);
-    (void)fmt_str(out, cap, pos, " Z");
-    put_mm(out, cap, pos, pt.p.z);
+    put_word(out, cap, pos, "G1 X", pt.p.x, 4u);
+    put_word(out, cap, pos, " Y", pt.p.y, 4u);
+    put_word(out, cap, pos, " Z", pt.p.z, 4u);
     if (job->toolaxis != JOB_TOOLAXIS_OFF) {
         e = put_axis(g, run, path, job, k, &pt, out, cap, pos);
         if (e != CP_OK) {
@@ -160,16 +163,15 @@ static int put_item(char *out, size_t cap, size_t *pos, const struct out_run *ru
         (void)fmt_real(out, cap, pos, job->spindle, CP_R(1.0));
         break;
     case OUT_GCODE_SAFE:
-        put_mm(out, cap, pos, job->safe);
+        put_word(out, cap, pos, " Z", job->safe, 4u);
         break;
     case OUT_GCODE_ABOVE:
         e = out_point(path, &run->place, run->start_k, &pt);
         if (e != CP_OK) {
             return e;
         }
-        put_mm(out, cap, pos, pt.p.x);
-        (void)fmt_str(out, cap, pos, " Y");
-        put_mm(out, cap, pos, pt.p.y);
+        put_word(out, cap, pos, " X", pt.p.x, 4u);
+        put_word(out, cap, pos, " Y", pt.p.y, 4u);
         break;
     case OUT_GCODE_END:
         (void)fmt_str(out, cap, pos, machine_dialect(job->machine)->end);
@@ -219,15 +221,15 @@ static int build_line(struct out_gcode *g, const struct out_run *run, struct pat
 
 int out_gcode_check(const struct job *job)
 {
+    const struct machine_dialect *d = machine_dialect(job->machine);
     if (!(job->feed[0] > CP_R(0.0))) {
         return CP_ST_NO_FEED;
     }
     if (!job->safe_set) {
         return CP_ST_NO_SAFE;
     }
-    if ((job->checksum && !machine_dialect(job->machine)->checksum) ||
-        (job->toolaxis == JOB_TOOLAXIS_AC && !machine_dialect(job->machine)->ac) ||
-        (job->toolaxis == JOB_TOOLAXIS_IJK && !machine_dialect(job->machine)->ijk)) {
+    if ((job->checksum && !d->checksum) || (job->toolaxis == JOB_TOOLAXIS_AC && !d->ac) ||
+        (job->toolaxis == JOB_TOOLAXIS_IJK && !d->ijk)) {
         return CP_ST_DIALECT;
     }
     return CP_ST_OK;
@@ -287,17 +289,12 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     plan_program(g, run, job);
     run->end = run->lead + g->points + g->ntrail;
     /* what the stream will hold, for hosts and judges */
-    (void)fmt_str(s, cap, &pos, "[RUN:points=");
-    (void)fmt_u32(s, cap, &pos, path_count(path));
-    (void)fmt_str(s, cap, &pos, ",first=");
-    (void)fmt_u32(s, cap, &pos, run->start_k);
+    put_field(s, cap, &pos, "[RUN:points=", path_count(path));
+    put_field(s, cap, &pos, ",first=", run->start_k);
     (void)fmt_str(s, cap, &pos, path->info.mode == RASTER_LINES ? ",mode=LINES" : ",mode=CIRCLES");
-    (void)fmt_str(s, cap, &pos, ",n=");
-    (void)fmt_u32(s, cap, &pos, path->info.n);
-    (void)fmt_str(s, cap, &pos, ",steps=");
-    (void)fmt_u32(s, cap, &pos, path->info.steps);
-    (void)fmt_str(s, cap, &pos, ",link=");
-    (void)fmt_u32(s, cap, &pos, path->info.link);
+    put_field(s, cap, &pos, ",n=", path->info.n);
+    put_field(s, cap, &pos, ",steps=", path->info.steps);
+    put_field(s, cap, &pos, ",link=", path->info.link);
     (void)fmt_str(s, cap, &pos, "]\n");
     return pos;
 }

@@ -36,6 +36,11 @@ void place_sincos_deg(cp_real deg, cp_real *s, cp_real *c)
 
 void place_init(struct place *pl, const struct job_place *jp)
 {
+    static const cp_real ident[3][3] = {
+        {CP_R(1.0), CP_R(0.0), CP_R(0.0)},
+        {CP_R(0.0), CP_R(1.0), CP_R(0.0)},
+        {CP_R(0.0), CP_R(0.0), CP_R(1.0)},
+    };
     cp_real sz, cz, sa, ca, st, ct, k;
     cp_real t[3][3]; /* T, the tilt (Rodrigues about a = (ca, sa, 0)) */
     unsigned i;
@@ -52,23 +57,23 @@ void place_init(struct place *pl, const struct job_place *jp)
     t[2][0] = -st * sa;
     t[2][1] = st * ca;
     t[2][2] = ct;
-    /* R = T Rz, Rz = [cz -sz 0; sz cz 0; 0 0 1] */
+    pl->off.x = jp->off[0];
+    pl->off.y = jp->off[1];
+    pl->off.z = jp->off[2];
+    /* off: on unless exactly 0 (a NaN is not) */
+    pl->on =
+        (uint8_t) !(pl->off.x == CP_R(0.0) && pl->off.y == CP_R(0.0) && pl->off.z == CP_R(0.0));
+    /* R = T Rz, Rz = [cz -sz 0; sz cz 0; 0 0 1]; on unless R is exactly I (no PLACE/TILT,
+     * rz a multiple of 360, tilt 0) */
     for (i = 0; i < 3u; i++) {
         struct cp_vec3 *r = &pl->row[i];
         r->x = t[i][0] * cz + t[i][1] * sz;
         r->y = t[i][1] * cz - t[i][0] * sz;
         r->z = t[i][2];
+        if (r->x != ident[i][0] || r->y != ident[i][1] || r->z != ident[i][2]) {
+            pl->on = 1u;
+        }
     }
-    pl->off.x = jp->off[0];
-    pl->off.y = jp->off[1];
-    pl->off.z = jp->off[2];
-    /* the identity (no PLACE/TILT, rz a multiple of 360, tilt 0): exactly I, exactly 0 */
-    pl->on = (uint8_t)!(pl->row[0].x == CP_R(1.0) && pl->row[0].y == CP_R(0.0) &&
-                        pl->row[0].z == CP_R(0.0) && pl->row[1].x == CP_R(0.0) &&
-                        pl->row[1].y == CP_R(1.0) && pl->row[1].z == CP_R(0.0) &&
-                        pl->row[2].x == CP_R(0.0) && pl->row[2].y == CP_R(0.0) &&
-                        pl->row[2].z == CP_R(1.0) && pl->off.x == CP_R(0.0) &&
-                        pl->off.y == CP_R(0.0) && pl->off.z == CP_R(0.0));
 }
 
 void place_apply(const struct place *pl, struct raster_pt *pt)

@@ -26,7 +26,7 @@
  *   transform for |p_i| <= 100 mm, |off_i| <= 1000 mm (place_accuracy). A normal stays
  *   unit to ~2e-7 (measured). The double build (host) is exact to ~1e-15 relative.
  * Cost on the M4F (make bench): place_apply 66 instructions per point (call included;
- * inlined in out_point), place_init 451 once per RUN (three cp_sincos); no per-point trig.
+ * inlined in out_point), place_init 470 once per RUN (three cp_sincos); no per-point trig.
  */
 #ifndef PLACE_H
 #define PLACE_H

@@ -88,11 +88,17 @@ static void tx_u32(struct proto *p, uint32_t v)
     p->tx_len = (uint16_t)pos;
 }
 
+/* A key and its number: "|P:" and 12 (a report's field, an option, an error code). */
+static void tx_field(struct proto *p, const char *key, uint32_t v)
+{
+    tx_str(p, key);
+    tx_u32(p, v);
+}
+
 /* "error:<code> <text>", the head of every error reply (a cause may follow). */
 static void tx_error(struct proto *p, int code)
 {
-    tx_str(p, "error:");
-    tx_u32(p, (uint32_t)code);
+    tx_field(p, "error:", (uint32_t)code);
     tx_str(p, " ");
     tx_str(p, cp_status_text(code));
 }
@@ -146,11 +152,9 @@ static void reply_command(struct proto *p, int code)
         tx_str(p, j->cause_limit);
     }
     if (j->cause_args_max != 0u) { /* "(LINES: 3..4 arguments)" */
-        tx_str(p, ": ");
-        tx_u32(p, j->cause_args_min);
+        tx_field(p, ": ", j->cause_args_min);
         if (j->cause_args_max != j->cause_args_min) {
-            tx_str(p, "..");
-            tx_u32(p, j->cause_args_max);
+            tx_field(p, "..", j->cause_args_max);
         }
         tx_str(p, j->cause_args_max == 1u ? " argument" : " arguments");
     }
@@ -169,12 +173,10 @@ static void reply_info(struct proto *p)
         {",window=", OUT_FRAMES_WINDOW},
     };
     size_t i;
-    tx_str(p, "[VER:canalpath " CP_FW_VERSION " proto ");
-    tx_u32(p, CP_PROTO_VERSION);
+    tx_field(p, "[VER:canalpath " CP_FW_VERSION " proto ", CP_PROTO_VERSION);
     tx_str(p, "]\n[OPT:real=" CP_REAL_NAME);
     for (i = 0; i < sizeof opt / sizeof opt[0]; i++) {
-        tx_str(p, opt[i].key);
-        tx_u32(p, opt[i].value);
+        tx_field(p, opt[i].key, opt[i].value);
     }
     tx_str(p, ",models=");
     tx_str(p, job_models());
@@ -185,14 +187,6 @@ static void reply_info(struct proto *p)
 static int streaming(const struct proto *p)
 {
     return p->state == PROTO_RUN || p->state == PROTO_HOLD;
-}
-
-/* "/<a>" then ">\n" (the end of a status report's field "<k>/<a>"). */
-static void tx_of(struct proto *p, uint32_t a, const char *end)
-{
-    tx_str(p, "/");
-    tx_u32(p, a);
-    tx_str(p, end);
 }
 
 /* "<Idle>", "<Check|W:w|S:i/m>" (RUN's check: walk w of the patch, its step i of m;
@@ -207,31 +201,25 @@ static void reply_report(struct proto *p)
                                          [PROTO_CHECK] = "<Check"};
     uint32_t m = path_count(&p->path), k, block;
     tx_str(p, names[p->state]);
-    if (p->state == PROTO_IDLE) {
-        tx_str(p, ">\n");
-        return;
-    }
     if (p->state == PROTO_CHECK) {
         path_check_progress(&p->path, &p->out.check, &block, &k, &m);
-        tx_str(p, "|W:");
-        tx_u32(p, block);
-        tx_str(p, "|S:");
-        tx_u32(p, k);
-        tx_of(p, m, ">\n");
-        return;
+        tx_field(p, "|W:", block);
+        tx_field(p, "|S:", k);
+        tx_field(p, "/", m);
+    } else if (p->state != PROTO_IDLE) {
+        /* the items sent after the lead items (header lines, BEGIN) are points from
+         * start_k on, up to the last one (then END) */
+        k = p->run.start_k + (p->run.next > p->run.lead ? p->run.next - p->run.lead : 0u);
+        if (k > m) { /* start_k + next <= m + 2 (the end of a run): no wrap above */
+            k = m;
+        }
+        block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
+        tx_field(p, "|L:", k > 0u ? (k - 1u) / block : 0u);
+        tx_field(p, "/", p->path.info.n);
+        tx_field(p, "|P:", k);
+        tx_field(p, "/", m);
     }
-    /* the items sent after the lead items (header lines, BEGIN) are points from start_k
-     * on, up to the last one (then END) */
-    k = p->run.start_k + (p->run.next > p->run.lead ? p->run.next - p->run.lead : 0u);
-    if (k > m) { /* start_k + next <= m + 2 (the end of a run): no wrap above */
-        k = m;
-    }
-    block = (uint32_t)p->path.info.steps + 1u + p->path.info.link;
-    tx_str(p, "|L:");
-    tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
-    tx_of(p, p->path.info.n, "|P:");
-    tx_u32(p, k);
-    tx_of(p, m, ">\n");
+    tx_str(p, ">\n");
 }
 
 /*---------------------------------------------------------------------------
@@ -372,8 +360,9 @@ static void machine_poll(struct proto *p, uint32_t now)
     }
 }
 
-/* Keep the machine's line that stopped a run, for the host's reply. */
-static void keep_fault(struct proto *p, const char *line, size_t len)
+/* Keep the machine's line that stopped a run, for the host's reply. (Not inlined: one copy
+ * for the machine link's lines and the host link's.) */
+static CP_NOINLINE void keep_fault(struct proto *p, const char *line, size_t len)
 {
     size_t i;
     for (i = 0; i < len && i < PROTO_FAULT_MAX; i++) {
