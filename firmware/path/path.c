@@ -26,6 +26,7 @@ int path_has(unsigned kind)
     p->info.steps = p->u.name.head.steps;                                                          \
     p->info.link = p->u.name.head.link;                                                            \
     p->info.mode = p->u.name.head.mode;                                                            \
+    p->info.overlap = p->u.name.head.overlap;                                                      \
     break;
 
 /* The whole init of a model without a sliced check (on error its count is 0). */
@@ -46,6 +47,7 @@ int path_check_begin(struct path *p, struct path_check *c, uint8_t kind,
     p->info.steps = 0;
     p->info.link = 0;
     p->info.mode = 0;
+    p->info.overlap = 0;
     if (raster == NULL || geom == NULL || !path_has(kind)) {
         return CP_ERR_INVAL;
     }

@@ -298,6 +298,9 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     (void)fmt_u32(s, cap, &pos, path->info.steps);
     (void)fmt_str(s, cap, &pos, ",link=");
     (void)fmt_u32(s, cap, &pos, path->info.link);
+    if (path->info.overlap) { /* far parts meet, the tool inside: reported, harmless */
+        (void)fmt_str(s, cap, &pos, ",overlap=1");
+    }
     (void)fmt_str(s, cap, &pos, "]\n");
     return pos;
 }

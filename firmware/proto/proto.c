@@ -198,7 +198,8 @@ static void tx_of(struct proto *p, uint32_t a, const char *end)
 /* "<Idle>", "<Check|W:w|S:i/m>" (RUN's check: walk w of the patch, its step i of m;
  * path_check_progress) or "<Run|L:j/n|P:k/m>" ("<Hold|...>"): the line (or circle) j of
  * n of the last point sent, and k points of the job's m sent (k counts from the job's
- * first point: RESUME). */
+ * first point: RESUME); then "|Overlap:1" when the run's path reported far parts that
+ * meet (path_info.overlap). */
 static void reply_report(struct proto *p)
 {
     static const char *const names[4] = {[PROTO_IDLE] = "<Idle",
@@ -231,7 +232,9 @@ static void reply_report(struct proto *p)
     tx_u32(p, k > 0u ? (k - 1u) / block : 0u);
     tx_of(p, p->path.info.n, "|P:");
     tx_u32(p, k);
-    tx_of(p, m, ">\n");
+    /* an overlap the model's init reported (the tool inside: harmless) stays in every
+     * report of the run */
+    tx_of(p, m, p->path.info.overlap ? "|Overlap:1>\n" : ">\n");
 }
 
 /*---------------------------------------------------------------------------
