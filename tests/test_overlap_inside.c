@@ -5,14 +5,17 @@
  * SPDX-License-Identifier: MIT
  *
  * Each report is cross-checked with an independent measure of the exact geometry
- * (ref_spine_far_gap: the spheres themselves, not the firmware's capsules): a reported job
- * has far spheres within the check's slack, an unreported one has none that overlap.
+ * (ref_spine_far_gap: the spheres themselves; ref_channel_far_depth: the section disks; not
+ * the firmware's capsules): a reported SPINE job has far spheres within the check's slack,
+ * an unreported one has none that overlap; an unreported channel has no far disks that
+ * share points.
  */
 #include <math.h>
 #include <string.h>
 
 #include "test.h"
 #include "channel.h"
+#include "ref_channel.h"
 #include "ref_spine.h"
 #include "spine.h"
 
@@ -215,36 +218,73 @@ int test_seam_channel(void)
     return 0;
 }
 
-/* A duct whose ends come close: the loop left open by 0.12 rad (ends 2.8 mm apart, sections
- * 6 x 4 mm): its far parts meet, the tool inside: streamed and REPORTED; open by 0.5 rad
- * (ends 11.6 mm apart) it is not. The report agrees with the exact measure: the end
- * sections' disks (planes through the centres, normal to the guide) meet iff ... checked
- * here by the distance of the ends' centres against the sections' extent. */
+/* The exact measure of the loop in oi_cc (ref_channel_far_depth: a section's boundary
+ * inside a far section's disk, > 0; no firmware code), pairs at least pi b + 5 h apart as
+ * the host_sim judge takes them. */
+static double oi_depth(void)
+{
+    static struct ref_channel rm;
+    static struct ref_channel_far rf;
+    struct ref_ch_sec rs[4];
+    double ua, ub;
+    unsigned i;
+    for (i = 0; i < 4u; i++) {
+        const struct channel_section *s = &oi_cc.s[i];
+        rs[i].a = (double)s->a;
+        rs[i].b = (double)s->b;
+        rs[i].n = (double)s->n;
+        rs[i].c[0] = (double)s->c.x;
+        rs[i].c[1] = (double)s->c.y;
+        rs[i].c[2] = (double)s->c.z;
+        rs[i].x[0] = (double)s->x.x;
+        rs[i].x[1] = (double)s->x.y;
+        rs[i].x[2] = (double)s->x.z;
+        rs[i].z[0] = (double)s->z.x;
+        rs[i].z[1] = (double)s->z.y;
+        rs[i].z[2] = (double)s->z.z;
+    }
+    (void)ref_channel_build(&rm, 4, rs);
+    ref_channel_far_init(&rf, &rm);
+    return ref_channel_far_depth(&rm, &rf, OI_PI * (rf.rbmax + rf.piece) + 5.0 * rf.piece, &ua,
+                                 &ub);
+}
+
+/* Far parts of a duct that meet, the tool inside: the loop carried on 0.5 rad past its
+ * start (its last part runs through its first: their disks share points, the exact measure
+ * finds a section's boundary inside a far disk) streams and is REPORTED; the loop left open
+ * by 0.5 rad (ends 11.5 mm apart) is not. Left open by 0.12 rad (ends 2.8 mm apart, the end
+ * sections face each other across the gap) it is reported although the disks are apart:
+ * the documented looseness at an open end (a section is flat, its ball reaches a = 3 mm
+ * past it). */
 int test_overlap_channel(void)
 {
     static const double same[4] = {2.0, 2.0, 2.0, 2.0};
-    double ang[4], d;
-    struct cp_vec3 e;
-    oi_angles(ang, 0.12);
+    double ang[4], depth;
+    oi_angles(ang, -0.5);
     oi_loop(ang, same);
     CHECK_EQ_INT(oi_channel(), CP_OK);
-    cp_v3_sub(&oi_cc.s[3].c, &oi_cc.s[0].c, &e);
-    d = (double)cp_v3_norm(&e);
-    TEST_NOTE("channel loop open by 0.12 rad: ends %.2f mm apart, overlap %u\n", d,
-              (unsigned)oi_cp.head.overlap);
-    CHECK(d < 3.0); /* the end sections (a = 3 along y, both planes through their centres,
-                       nearly parallel) share points: a real overlap */
+    depth = oi_depth();
+    TEST_NOTE("channel loop 0.5 rad past its start: overlap %u, exact far depth %.3f mm\n",
+              (unsigned)oi_cp.head.overlap, depth);
+    CHECK(depth > 1.0);
     CHECK_EQ_INT(oi_cp.head.overlap, 1);
     CHECK(channel_path_count(&oi_cp) > 0u);
     oi_angles(ang, 0.5);
     oi_loop(ang, same);
     CHECK_EQ_INT(oi_channel(), CP_OK);
-    cp_v3_sub(&oi_cc.s[3].c, &oi_cc.s[0].c, &e);
-    d = (double)cp_v3_norm(&e);
-    TEST_NOTE("channel loop open by 0.5 rad: ends %.2f mm apart, overlap %u\n", d,
-              (unsigned)oi_cp.head.overlap);
-    CHECK(d > 2.0 * 3.0 * 1.8); /* farther than both sections' extent: no overlap */
+    depth = oi_depth();
+    TEST_NOTE("channel loop open by 0.5 rad: overlap %u, exact far depth %.3f mm\n",
+              (unsigned)oi_cp.head.overlap, depth);
+    CHECK(depth < 0.0);
     CHECK_EQ_INT(oi_cp.head.overlap, 0);
+    oi_angles(ang, 0.12);
+    oi_loop(ang, same);
+    CHECK_EQ_INT(oi_channel(), CP_OK);
+    depth = oi_depth();
+    TEST_NOTE("channel loop open by 0.12 rad: overlap %u (the ends' balls), exact far depth "
+              "%.3f mm\n", (unsigned)oi_cp.head.overlap, depth);
+    CHECK(depth < 0.0);
+    CHECK_EQ_INT(oi_cp.head.overlap, 1);
     return 0;
 }
 #else
