@@ -63,6 +63,12 @@ int judge_canal_surface(double tf, double u, double p[3]);
 /* The canal raster's angle range u0 <= u1 (radians, as in LINES/CIRCLES). 0 if none. */
 int judge_canal_urange(double *u0, double *u1);
 
+/* The overlap flag of the run being begun (issue 22): 1 when its "[RUN:...]" header ended
+ * with ",overlap=1" or its BEGIN frame's byte 15 was 1 (the firmware reported far parts of
+ * the sweep that meet, the tool inside), else 0. Valid in run_begin and until the next run
+ * (sim_check.c). */
+int judge_run_overlap(void);
+
 /* Helpers shared by the judges (judge_util.c). */
 #define JUDGE_MAX_TOKENS 24u
 /* Split buf in place at spaces, tabs, CR and LF. Returns the number of tokens; the first

@@ -14,6 +14,15 @@
  *   chord     consecutive points of one line/ring: distance of the reference point at the
  *             middle parameter from the chord <= TOL + 0.1 um (wire quantization)
  *   coverage  every point k exactly once, in order; complete runs reach the end.
+ *   overlap   (issue 22) the run header's overlap flag against the job's exact section disks
+ *             (ref_channel_far_depth: how deep a section's boundary lies inside a disk more
+ *             than pi (b_max + h) + 5 h of guide arc away, b_max the largest bounding ball,
+ *             h the longest arc of a 1/64 of the guide: pairs the firmware's check tests).
+ *             Per run, the miss in mm (0 if right): not reported although far disks share
+ *             points, by the depth; reported although the far sections' bounding balls
+ *             (the bound raster.h documents: the firmware reports on balls) more than
+ *             pi b_max apart keep a gap above the check's slack 4.5 h + the sampling's lip,
+ *             by the excess. Limit 1 um.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -37,7 +46,10 @@ static struct {
 
 static struct ref_channel model;
 
-static struct judge_stat st[4];
+static struct judge_stat st[4], so;
+static struct ref_channel_far far;
+static unsigned reported;           /* runs whose header reported an overlap */
+static double depth_max = -1e30;    /* greatest far depth over the runs, mm */
 static const char *const st_name[4] = {"surface", "line", "normal", "chord"};
 static unsigned runs, unchecked;
 static unsigned long cov_err, seen_pts;
@@ -154,6 +166,22 @@ void judge_channel_run_begin(uint32_t points, uint32_t first, int mode, unsigned
     }
     (void)ref_channel_build(&model, jb.ns, jb.s);
     run.ok = 1;
+    { /* the overlap flag against the exact far disks */
+        int flag = judge_run_overlap();
+        double ua, ub, h, depth, gap, miss = 0.0;
+        ref_channel_far_init(&far, &model);
+        h = far.piece;
+        depth = ref_channel_far_depth(&model, &far, JC_PI * (far.rbmax + h) + 5.0 * h, &ua, &ub);
+        gap = ref_channel_far_ballgap(&far, JC_PI * far.rbmax);
+        if (!flag && depth > 0.0) {
+            miss = depth;
+        } else if (flag && gap > 4.5 * h + far.lip) {
+            miss = gap - (4.5 * h + far.lip);
+        }
+        judge_stat_add(&so, miss, JC_LIM_MM, first);
+        reported += flag != 0;
+        depth_max = depth > depth_max ? depth : depth_max;
+    }
 }
 
 static void stat_add(int c, double v, uint32_t k, double lim)
@@ -273,6 +301,16 @@ void judge_channel_report(FILE *f, int *passed, int *failed)
         judge_stat_row(f, passed, failed, "channel", st_name[c], &st[c],
                        c == 3 ? jb.tol + 1e-4 : (c != 2 ? JC_LIM_MM : JC_LIM_DEG),
                        c != 2 ? "mm" : "deg", 1);
+    }
+    if (so.n > 0ul) {
+        if (depth_max > -1e29) {
+            fprintf(f, "  judge channel: %u of %lu run(s) reported an overlap; deepest far-disk "
+                    "point %.4f mm (< 0: none inside)\n", reported, so.n, depth_max);
+        } else {
+            fprintf(f, "  judge channel: %u of %lu run(s) reported an overlap; no boundary "
+                    "point crosses a far section's plane\n", reported, so.n);
+        }
+        judge_stat_row(f, passed, failed, "channel", "overlap", &so, JC_LIM_MM, "mm", 1);
     }
     snprintf(d, sizeof d, "%lu point(s) in %u run(s): %lu order/coverage errors, %u unchecked",
              seen_pts, runs, cov_err, unchecked);

@@ -18,6 +18,17 @@
  *            m - r n, tip: that - r z), limit 1e-3 mm
  *   normal   FRAMES: angle to the reference unit normal, limit 0.01 deg
  *   coverage every k exactly once, in order; header count = n (steps + 1) + (n - 1) link
+ *   overlap  (issue 22) the run header's overlap flag against the exact spheres of the job
+ *            (ref_spine_far_gap: the least |c(u) - c(u')| - R(u) - R(u') over pairs far
+ *            apart along the spine; no firmware code). Per run, the miss in mm (0 if right):
+ *            not reported although spheres more than pi (R_max + h) + 5 h of arc apart
+ *            overlap (h the longest arc of a 1/64 of u: those pairs lie in pieces the
+ *            firmware's check tests), by how much they overlap; reported although the
+ *            spheres more than pi R_max apart keep a gap, by how much that gap exceeds the
+ *            check's slack 4.5 h + the sampling's lip (its capsules: the largest R over a
+ *            piece, twice the sagitta, 1/16 of a chord). Limit 1 um. So an accepted job
+ *            whose far spheres overlap, and a report without far spheres near each other,
+ *            both FAIL.
  */
 #include "judge.h"
 
@@ -30,6 +41,7 @@
 #define JS_PI 3.14159265358979323846
 #define JS_LIM_POINT 1e-3
 #define JS_LIM_NORMAL 0.01
+#define JS_LIM_OVERLAP 1e-3
 
 static struct {
     int kind, law, mode, output, set;
@@ -47,7 +59,10 @@ static struct {
     int mode;
 } rn;
 
-static struct judge_stat sp, sn;
+static struct judge_stat sp, sn, so;
+static struct ref_spine_far rf;
+static unsigned reported;   /* runs whose header reported an overlap */
+static double gap_min = 1e30; /* least exact far gap over the runs, mm */
 static unsigned runs, runs_complete;
 static unsigned long cov_err, pts;
 
@@ -190,6 +205,22 @@ void judge_spine_run_begin(uint32_t points, uint32_t first, int mode, unsigned n
         s[slot + i] = jb.dir[i];
     }
     rs_ok = ref_spine_init(&rs, jb.kind, s, jb.law, jb.rp, zero ? NULL : jb.ref) == REF_SPINE_OK;
+    if (rs_ok) { /* the overlap flag against the exact spheres */
+        int flag = judge_run_overlap();
+        double ua, ub, h, far, near, miss = 0.0;
+        ref_spine_far_init(&rf, &rs);
+        h = rf.piece;
+        far = ref_spine_far_gap(&rs, &rf, JS_PI * (rf.rmax + h) + 5.0 * h, &ua, &ub);
+        near = ref_spine_far_gap(&rs, &rf, JS_PI * rf.rmax, &ua, &ub);
+        if (!flag && far < 0.0) {
+            miss = -far;
+        } else if (flag && near > 4.5 * h + rf.lip) {
+            miss = near - (4.5 * h + rf.lip);
+        }
+        judge_stat_add(&so, miss, JS_LIM_OVERLAP, first);
+        reported += flag != 0;
+        gap_min = far < gap_min ? far : gap_min;
+    }
 }
 
 /* (theta0, u) of point k of the run's raster. */
@@ -264,6 +295,11 @@ void judge_spine_report(FILE *f, int *passed, int *failed)
     judge_stat_row(f, passed, failed, "spine", "point", &sp, JS_LIM_POINT, "mm", 1);
     if (sn.n > 0ul) {
         judge_stat_row(f, passed, failed, "spine", "normal", &sn, JS_LIM_NORMAL, "deg", 1);
+    }
+    if (so.n > 0ul) {
+        fprintf(f, "  judge spine: %u of %lu run(s) reported an overlap; least exact far-sphere "
+                "gap %.4f mm\n", reported, so.n, gap_min);
+        judge_stat_row(f, passed, failed, "spine", "overlap", &so, JS_LIM_OVERLAP, "mm", 1);
     }
     (*(cov_err == 0ul ? passed : failed))++;
     fprintf(f, "  %s judge spine-coverage %lu point(s) in %u run(s), %lu coverage/header error(s)\n",

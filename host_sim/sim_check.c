@@ -181,10 +181,18 @@ int sim_check_job_line(const char *line)
     return rm != 0 ? rm : rb;
 }
 
+static int run_overlap; /* the header's overlap flag of the current run */
+
+int judge_run_overlap(void)
+{
+    return run_overlap;
+}
+
 void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
-                         unsigned link)
+                         unsigned link, int overlap)
 {
     runs++;
+    run_overlap = overlap != 0;
     judges[surface].run_begin(points, first, mode, n, steps, link);
 }
 

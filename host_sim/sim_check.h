@@ -39,9 +39,9 @@ void sim_check_init(void);
 int sim_check_job_line(const char *line);
 
 /* A run starts: the header/BEGIN values as sent by the firmware.
- * mode: 0 = LINES, 1 = CIRCLES. */
+ * mode: 0 = LINES, 1 = CIRCLES; overlap: the header's overlap flag (judge_run_overlap). */
 void sim_check_run_begin(uint32_t points, uint32_t first, int mode, unsigned n, unsigned steps,
-                         unsigned link);
+                         unsigned link, int overlap);
 
 /* The SURFACE word of the active row ("CANAL" until a SURFACE line selects another). */
 const char *sim_check_surface(void);

@@ -142,8 +142,9 @@ static void run_terminal(struct run *u)
     u->t_done = u->dlast;
 }
 
+/* overlap: the header's flag (",overlap=1" / BEGIN's byte 15; issue 22) */
 static void run_begin(struct run *u, uint32_t points, uint32_t first, int mode, unsigned n,
-                      unsigned steps, unsigned link)
+                      unsigned steps, unsigned link, int overlap)
 {
     struct sim_run_result *r = u->r;
     r->header = 1;
@@ -154,7 +155,7 @@ static void run_begin(struct run *u, uint32_t points, uint32_t first, int mode, 
     r->steps = steps;
     r->link = link;
     u->began = 1;
-    sim_check_run_begin(points, first, mode, n, steps, link);
+    sim_check_run_begin(points, first, mode, n, steps, link, overlap);
     sim_out_run_begin(sim_check_surface(), points, first, mode, n, steps, link);
 }
 
@@ -436,7 +437,8 @@ static void run_gcode_line(struct run *u)
         char mode[16];
         if (sscanf(s, "[RUN:points=%u,first=%u,mode=%15[A-Z],n=%u,steps=%u,link=%u]", &p, &f,
                    mode, &nn, &st, &lk) == 6) {
-            run_begin(u, p, f, strcmp(mode, "CIRCLES") == 0, nn, st, lk);
+            run_begin(u, p, f, strcmp(mode, "CIRCLES") == 0, nn, st, lk,
+                      strstr(s, ",overlap=1]") != NULL);
         }
         return;
     }
@@ -496,7 +498,7 @@ static void run_frame(struct run *u, const uint8_t *f)
     }
     if (f[2] == FRAME_BEGIN && plen >= 15u) {
         run_begin(u, frame_get_u32(pl), frame_get_u32(pl + 4), pl[14], frame_get_u16(pl + 8),
-                  frame_get_u16(pl + 10), frame_get_u16(pl + 12));
+                  frame_get_u16(pl + 10), frame_get_u16(pl + 12), plen >= 16u && pl[15] == 1u);
         u->begin_seen = 1;
     } else if (f[2] == FRAME_POINT && plen >= FRAME_POINT_PAYLOAD) {
         int32_t xyz[3];

@@ -81,6 +81,9 @@ M4F_SEMI_OBJ := $(M4F)/hal/startup.o $(M4F)/hal/semihost.o
 # (gcc's call graph shows them as __indirect_call). tools/stack.sh charges every
 # indirect call with the deepest of these. Ports must keep these leaf-ish.
 M4F_INDIRECT := cmsdk_write cmsdk_read cmsdk_now_ms
+# ... and the models' ball callbacks of raster_overlap_check (raster.h), where the image has
+# the model (stack.sh --indirect-opt)
+M4F_INDIRECT_OPT := gsr_ball sp_ball ch_ball
 M4F_ISRS     := UART0RX_IRQHandler UART0TX_IRQHandler UART1RX_IRQHandler UART1TX_IRQHandler \
                 TIMER0_IRQHandler
 
@@ -223,11 +226,11 @@ guard-budget: $(M4F)/fw.elf
 	$(Q)sh tools/m4f_size.sh $< linker/budget.txt guard $(M4F_FW_SET)
 
 M4F_STACK_ARGS = --elf $(M4F)/fw.elf --root Reset_Handler --isr "$(M4F_ISRS)" \
-    --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
+    --indirect "$(M4F_INDIRECT)" --indirect-opt "$(M4F_INDIRECT_OPT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
     $(call M4F_IMG_CI,$(M4F_FW_SET))
 # the same for image fw-<set>.elf
 M4F_STACK_ARGS_SET = --elf $(M4F)/fw-$(1).elf --root Reset_Handler --isr "$(M4F_ISRS)" \
-    --indirect "$(M4F_INDIRECT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
+    --indirect "$(M4F_INDIRECT)" --indirect-opt "$(M4F_INDIRECT_OPT)" --stack $(M4F_STACK) --fn-max $(M4F_STACK_FN) \
     $(call M4F_IMG_CI,$(1))
 
 ## guard-images: every product image fw-<set>.elf (the `image` rows of linker/budget.txt)

@@ -453,7 +453,7 @@ static void frame_in(const uint8_t *f)
     int n;
     if (f[2] == FRAME_BEGIN) {
         ref_start(frame_get_u32(f + 3));
-        if (f[0] != 15u + FRAME_OVERHEAD || frame_get_u32(f + 3) != path_count(&ref)) {
+        if (f[0] != 16u + FRAME_OVERHEAD || frame_get_u32(f + 3) != path_count(&ref)) {
             FAIL("bad BEGIN frame");
         }
     } else if (f[2] == FRAME_POINT) {

@@ -172,10 +172,10 @@ static void frame_in(const uint8_t *f)
     }
     switch (f[2]) {
     case FRAME_BEGIN:
-        if (f[1] != 0u || f[0] != 21u || frame_get_u32(f + 3) != canal_path_count(ref) ||
+        if (f[1] != 0u || f[0] != 22u || frame_get_u32(f + 3) != canal_path_count(ref) ||
             frame_get_u32(f + 7) != first || frame_get_u16(f + 11) != ref->head.n ||
             frame_get_u16(f + 13) != ref->head.steps || frame_get_u16(f + 15) != ref->head.link ||
-            f[17] != ref->head.mode) {
+            f[17] != ref->head.mode || f[18] != 0u) { /* the canal reports no overlap */
             FAIL("bad BEGIN frame");
         }
         break;

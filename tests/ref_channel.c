@@ -504,3 +504,163 @@ void ref_channel_wire(const struct ref_ch_sec *s, int m, double *len, double lam
     }
     *len = tot;
 }
+
+/* ---- the far sections (ref_channel.h) ---- */
+
+static double far_dist3(const double *a, const double *b)
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* the bounding ball of a section: a max(1, sqrt(2^(1 - 2/n))), a the larger semi-axis */
+static double far_ball(const struct ref_ch_row *o)
+{
+    double a = o->a > o->b ? o->a : o->b, q = 2.0 / o->n;
+    return q < 1.0 ? a * sqrt(pow(2.0, 1.0 - q)) : a;
+}
+
+void ref_channel_far_init(struct ref_channel_far *f, const struct ref_channel *r)
+{
+    const double top = r->ns - 1.0;
+    struct ref_ch_row o;
+    double ext = 0.0, prev[3];
+    int k, m, q;
+    f->rbmax = f->lip = f->piece = 0.0;
+    for (k = 0; k <= REF_CH_FAR; k++) {
+        ref_channel_row(r, top * k / REF_CH_FAR, &o);
+        for (q = 0; q < 3; q++) {
+            f->l[k][q] = o.l[q];
+            f->t[k][q] = o.tau[q];
+        }
+        f->rb[k] = far_ball(&o);
+        f->rbmax = f->rb[k] > f->rbmax ? f->rb[k] : f->rbmax;
+        f->s[k] = 0.0;
+        if (k > 0) {
+            double a = 0.0;
+            for (q = 0; q < 3; q++) {
+                prev[q] = f->l[k - 1][q];
+            }
+            for (m = 1; m <= 8; m++) {
+                ref_channel_row(r, top * (k - 1 + m / 8.0) / REF_CH_FAR, &o);
+                a += far_dist3(prev, o.l);
+                for (q = 0; q < 3; q++) {
+                    prev[q] = o.l[q];
+                }
+            }
+            f->s[k] = f->s[k - 1] + a;
+            a += fabs(f->rb[k] - f->rb[k - 1]);
+            f->lip = a > f->lip ? a : f->lip;
+        }
+    }
+    for (k = 0; k < r->ns; k++) {
+        double d = far_dist3(r->s[k].c, r->s[0].c);
+        ext = d > ext ? d : ext;
+    }
+    f->len = f->s[REF_CH_FAR];
+    for (k = 0; k < 64; k++) {
+        int a = k * REF_CH_FAR / 64, b = (k + 1) * REF_CH_FAR / 64;
+        f->piece = f->s[b] - f->s[a] > f->piece ? f->s[b] - f->s[a] : f->piece;
+    }
+    f->closed = far_dist3(f->l[REF_CH_FAR], f->l[0]) <= 1e-5 * ext;
+}
+
+/* samples i, j far apart: at least near of arc both ways on a closed guide */
+static int far_apart(const struct ref_channel_far *f, int i, int j, double near)
+{
+    double sep = fabs(f->s[j] - f->s[i]);
+    return sep >= near && !(f->closed && f->len - sep < near);
+}
+
+/* height of p over the plane of the section at u (guide units) */
+static double far_height(const struct ref_channel *r, double u, const double *p,
+                         struct ref_ch_row *o)
+{
+    double d[3];
+    int q;
+    ref_channel_row(r, u, o);
+    for (q = 0; q < 3; q++) {
+        d[q] = p[q] - o->l[q];
+    }
+    return dot3(d, o->tau);
+}
+
+/* depth of p in the disk of row o (p in its plane): (1 - rho) min(a, b) */
+static double far_in_disk(const struct ref_ch_row *o, const double *p)
+{
+    double d[3], x1, x2, X, Y, rho;
+    int q;
+    for (q = 0; q < 3; q++) {
+        d[q] = p[q] - o->l[q];
+    }
+    x1 = dot3(d, o->e1);
+    x2 = dot3(d, o->e2);
+    X = x1 * cos(o->alpha) + x2 * sin(o->alpha);
+    Y = -x1 * sin(o->alpha) + x2 * cos(o->alpha);
+    rho = pow(pow(fabs(X / o->a), o->n) + pow(fabs(Y / o->b), o->n), 1.0 / o->n);
+    return (1.0 - rho) * (o->a < o->b ? o->a : o->b);
+}
+
+double ref_channel_far_depth(const struct ref_channel *r, const struct ref_channel_far *f,
+                             double near, double *ua, double *ub)
+{
+    const double top = r->ns - 1.0;
+    struct ref_ch_row o;
+    double best = -1e30;
+    int i, j, m, it, q;
+    *ua = *ub = -1.0;
+    for (i = 0; i <= REF_CH_FAR; i++) {
+        double u = top * i / REF_CH_FAR;
+        for (m = 0; m < REF_CH_FAR_W; m++) {
+            double p[3], w = 2.0 * 3.14159265358979323846 * m / REF_CH_FAR_W, h0, h1, d[3];
+            ref_channel_point(r, u, w, p);
+            for (q = 0; q < 3; q++) {
+                d[q] = p[q] - f->l[0][q];
+            }
+            h0 = dot3(d, f->t[0]);
+            for (j = 1; j <= REF_CH_FAR; j++) {
+                for (q = 0; q < 3; q++) {
+                    d[q] = p[q] - f->l[j][q];
+                }
+                h1 = dot3(d, f->t[j]);
+                if ((h0 < 0.0) != (h1 < 0.0) && far_apart(f, i, j - 1, near) &&
+                    far_apart(f, i, j, near)) {
+                    double lo = top * (j - 1) / REF_CH_FAR, hi = top * j / REF_CH_FAR, hl = h0, x;
+                    for (it = 0; it < 40; it++) { /* bisection of the height's sign */
+                        double mid = 0.5 * (lo + hi), hm = far_height(r, mid, p, &o);
+                        if ((hm < 0.0) == (hl < 0.0)) {
+                            lo = mid;
+                            hl = hm;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    (void)far_height(r, 0.5 * (lo + hi), p, &o);
+                    x = far_in_disk(&o, p);
+                    if (x > best) {
+                        best = x;
+                        *ua = u;
+                        *ub = 0.5 * (lo + hi);
+                    }
+                }
+                h0 = h1;
+            }
+        }
+    }
+    return best;
+}
+
+double ref_channel_far_ballgap(const struct ref_channel_far *f, double near)
+{
+    double best = 1e30;
+    int i, j;
+    for (i = 0; i <= REF_CH_FAR; i++) {
+        for (j = i + 1; j <= REF_CH_FAR; j++) {
+            if (far_apart(f, i, j, near)) {
+                double g = far_dist3(f->l[i], f->l[j]) - f->rb[i] - f->rb[j];
+                best = g < best ? g : best;
+            }
+        }
+    }
+    return best;
+}

@@ -67,4 +67,38 @@ double ref_channel_off_section(const struct ref_channel *r, double u, const doub
  * (Jacobi), unit axis of the largest (sign towards +z). */
 void ref_channel_wire(const struct ref_ch_sec *s, int m, double *len, double lam[3], double ax[3]);
 
+/* ---- the far sections (issue 22): an independent overlap measure ----
+ * The duct is the union of its section DISKS D(u) (the filled superellipse in the plane
+ * through L(u) normal to the guide). Two disks share a point iff a boundary point of one
+ * lies in the other (their common points lie on the planes' common line, and the ends of
+ * that segment are on a boundary). ref_channel_far_depth measures how deep the boundary
+ * points P(u, w) of the sections u = k (N - 1) / REF_CH_FAR (w at REF_CH_FAR_W angles) lie
+ * inside a far disk D(u'): u' where P's height over the plane of u' changes sign between two
+ * samples (both at least `near` mm of guide arc from u, the shorter way round on a closed
+ * guide) is refined by bisection (40 steps), and there the in-plane depth is
+ * (1 - rho) min(a, b), rho = (|X/a|^n + |Y/b|^n)^(1/n) in the section's own axes (> 0:
+ * inside). Written from the definitions (no firmware code: the firmware bounds 64 pieces by
+ * capsules of bounding circles). ref_channel_far_ballgap is the least gap between the
+ * bounding circles' balls a max(1, sqrt(2^(1 - 2/n))) (the firmware's documented bound,
+ * raster.h and channel.c) of samples at least `near` apart: what a report rests on. */
+#define REF_CH_FAR 128
+#define REF_CH_FAR_W 48
+struct ref_channel_far {
+    double s[REF_CH_FAR + 1];    /* guide arc length from u = 0, mm (8 chords a sample) */
+    double l[REF_CH_FAR + 1][3]; /* L */
+    double t[REF_CH_FAR + 1][3]; /* unit tangent (the plane's normal) */
+    double rb[REF_CH_FAR + 1];   /* the bounding ball's radius */
+    double len, rbmax, piece, lip; /* total arc; largest ball; longest arc of a 1/64 of the
+                                      guide; largest move of L plus ball between samples */
+    int closed;                  /* |L(N-1) - L(0)| <= 1e-5 x the centres' extent */
+};
+void ref_channel_far_init(struct ref_channel_far *f, const struct ref_channel *r);
+/* The greatest depth (mm; negative: no boundary point inside a far disk, and -1e30 when no
+ * plane is crossed) and where (*ua: the boundary point's u, *ub: the disk's u; guide units). */
+double ref_channel_far_depth(const struct ref_channel *r, const struct ref_channel_far *f,
+                             double near, double *ua, double *ub);
+/* The least |L(u) - L(u')| - rb(u) - rb(u') over the samples at least `near` apart (1e30:
+ * none). */
+double ref_channel_far_ballgap(const struct ref_channel_far *f, double near);
+
 #endif /* REF_CHANNEL_H */

@@ -483,3 +483,134 @@ int ref_spine_circle_point(const struct ref_spine *rs, double u, double theta, d
     ref_spine_surface(&j, l.y, theta, 0.0, m, n);
     return 0;
 }
+
+/* ---- the far spheres (ref_spine.h) ---- */
+
+static double far_norm(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+void ref_spine_far_init(struct ref_spine_far *f, const struct ref_spine *rs)
+{
+    struct ref_spine_jet j;
+    double prev[3], ext = 0.0;
+    int k, m, q;
+    f->len = f->rmax = f->lip = f->piece = 0.0;
+    for (k = 0; k <= REF_SPINE_FAR; k++) {
+        ref_spine_jet(rs, (double)k / REF_SPINE_FAR, &j);
+        for (q = 0; q < 3; q++) {
+            f->c[k][q] = j.c[q];
+        }
+        f->r[k] = j.r;
+        f->rmax = j.r > f->rmax ? j.r : f->rmax;
+        f->s[k] = 0.0;
+        if (k > 0) { /* the arc of the interval by 8 chords */
+            double a = 0.0;
+            for (q = 0; q < 3; q++) {
+                prev[q] = f->c[k - 1][q];
+            }
+            for (m = 1; m <= 8; m++) {
+                ref_spine_jet(rs, (k - 1 + m / 8.0) / REF_SPINE_FAR, &j);
+                a += far_norm(prev, j.c);
+                for (q = 0; q < 3; q++) {
+                    prev[q] = j.c[q];
+                }
+            }
+            f->s[k] = f->s[k - 1] + a;
+            a += fabs(f->r[k] - f->r[k - 1]);
+            f->lip = a > f->lip ? a : f->lip;
+        }
+        ext = far_norm(f->c[k], f->c[0]) > ext ? far_norm(f->c[k], f->c[0]) : ext;
+    }
+    f->len = f->s[REF_SPINE_FAR];
+    for (k = 0; k < 64; k++) {
+        int a = k * REF_SPINE_FAR / 64, b = (k + 1) * REF_SPINE_FAR / 64;
+        f->piece = f->s[b] - f->s[a] > f->piece ? f->s[b] - f->s[a] : f->piece;
+    }
+    f->closed = far_norm(f->c[REF_SPINE_FAR], f->c[0]) <= 1e-5 * ext;
+}
+
+static double far_pair(const struct ref_spine *rs, double u, double v)
+{
+    struct ref_spine_jet a, b;
+    ref_spine_jet(rs, u, &a);
+    ref_spine_jet(rs, v, &b);
+    return far_norm(a.c, b.c) - a.r - b.r;
+}
+
+/* golden section of the pair's gap in one coordinate (which = 0: u, 1: v) over [lo, hi] */
+static void far_golden(const struct ref_spine *rs, double *u, double *v, int which, double lo,
+                       double hi)
+{
+    const double g = 0.6180339887498949;
+    double a = lo, b = hi, x1 = b - g * (b - a), x2 = a + g * (b - a), f1, f2;
+    int it;
+    f1 = which ? far_pair(rs, *u, x1) : far_pair(rs, x1, *v);
+    f2 = which ? far_pair(rs, *u, x2) : far_pair(rs, x2, *v);
+    for (it = 0; it < 40; it++) {
+        if (f1 < f2) {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - g * (b - a);
+            f1 = which ? far_pair(rs, *u, x1) : far_pair(rs, x1, *v);
+        } else {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + g * (b - a);
+            f2 = which ? far_pair(rs, *u, x2) : far_pair(rs, x2, *v);
+        }
+    }
+    {
+        double x = 0.5 * (a + b), cur = far_pair(rs, *u, *v);
+        double t = which ? far_pair(rs, *u, x) : far_pair(rs, x, *v);
+        if (t < cur) { /* keep the better point: the result stays a real pair's gap */
+            if (which) {
+                *v = x;
+            } else {
+                *u = x;
+            }
+        }
+    }
+}
+
+double ref_spine_far_gap(const struct ref_spine *rs, const struct ref_spine_far *f, double near,
+                         double *ua, double *ub)
+{
+    double best = 1e30, u, v;
+    int i, j, bi = -1, bj = -1, round;
+    for (i = 0; i <= REF_SPINE_FAR; i++) {
+        for (j = i + 1; j <= REF_SPINE_FAR; j++) {
+            double sep = f->s[j] - f->s[i], g;
+            if (sep < near || (f->closed && f->len - sep < near)) {
+                continue;
+            }
+            g = far_norm(f->c[i], f->c[j]) - f->r[i] - f->r[j];
+            if (g < best) {
+                best = g;
+                bi = i;
+                bj = j;
+            }
+        }
+    }
+    *ua = *ub = -1.0;
+    if (bi < 0) {
+        return best;
+    }
+    u = (double)bi / REF_SPINE_FAR;
+    v = (double)bj / REF_SPINE_FAR;
+    for (round = 0; round < 4; round++) {
+        double lo = (bi > 0 ? bi - 1 : 0) / (double)REF_SPINE_FAR;
+        double hi = (bi < REF_SPINE_FAR ? bi + 1 : bi) / (double)REF_SPINE_FAR;
+        far_golden(rs, &u, &v, 0, lo, hi);
+        lo = (bj > 0 ? bj - 1 : 0) / (double)REF_SPINE_FAR;
+        hi = (bj < REF_SPINE_FAR ? bj + 1 : bj) / (double)REF_SPINE_FAR;
+        far_golden(rs, &u, &v, 1, lo, hi);
+    }
+    *ua = u;
+    *ub = v;
+    return far_pair(rs, u, v);
+}

@@ -162,4 +162,31 @@ int ref_spine_line_point(const struct ref_spine *rs, double theta0, double u, do
 int ref_spine_circle_point(const struct ref_spine *rs, double u, double theta, double m[3],
                            double n[3]);
 
+/* ---- the far spheres (issue 22): an independent overlap measure ----
+ * The solid of the spine surface is the union of the spheres of radius R(u) about c(u).
+ * Two of them, at u and u', OVERLAP when |c(u) - c(u')| < R(u) + R(u'); ref_spine_far_gap
+ * gives the least gap |c(u) - c(u')| - R(u) - R(u') over the pairs whose spine arc between
+ * them is at least `near` mm (on a closed spine, |c(1) - c(0)| <= 1e-5 x its extent, the
+ * shorter way round), sampled at u = k / REF_SPINE_FAR (arc lengths of 8 chords a sample)
+ * and the best pair refined by alternating golden sections in u and u' (40 steps each,
+ * 4 rounds) inside the pair's two neighbouring intervals. Every gap it returns is the gap of
+ * a real pair (an upper bound of the least one); the least one is at most `lip` (the
+ * largest move of c plus that of R between samples) below the sampled minimum.
+ * Written from the definition alone (no firmware code: the firmware bounds 64 pieces by
+ * capsules, this measures spheres). */
+#define REF_SPINE_FAR 512
+struct ref_spine_far {
+    double s[REF_SPINE_FAR + 1]; /* spine arc length from u = 0, mm */
+    double c[REF_SPINE_FAR + 1][3];
+    double r[REF_SPINE_FAR + 1];
+    double len, rmax, lip, piece; /* total arc, largest R, largest sample move, longest arc
+                                     of a 1/64 of u, mm */
+    int closed;
+};
+void ref_spine_far_init(struct ref_spine_far *f, const struct ref_spine *rs);
+/* The least gap (mm) over the pairs at least `near` mm of arc apart, *ua < *ub where it is
+ * (1e30, -1, -1 when no pair is that far apart). */
+double ref_spine_far_gap(const struct ref_spine *rs, const struct ref_spine_far *f, double near,
+                         double *ua, double *ub);
+
 #endif /* REF_SPINE_H */

@@ -3,7 +3,8 @@
 # SPDX-License-Identifier: MIT
 #
 # Usage: stack.sh [--guard] --elf fw.elf --root Reset_Handler --isr "A B" \
-#                 --indirect "f g" --stack BYTES --fn-max BYTES  file.ci...
+#                 --indirect "f g" [--indirect-opt "h k"] --stack BYTES --fn-max BYTES
+#                 file.ci...
 #
 # Input: one .ci file per object (gcc -fstack-usage -fcallgraph-info=su): every
 # function with its own frame ("N bytes (static)") and every call edge. Static
@@ -18,6 +19,9 @@
 #   Indirect calls (gcc's __indirect_call: the struct hal_uart function pointers)
 #     are charged with the deepest of the --indirect functions, the HAL port's
 #     write/read/now_ms. A port must keep those leaf-ish; a new port lists its own.
+#     --indirect-opt lists more targets charged the same way where the image has them
+#     (the models' ball callbacks of raster_overlap_check, raster.h: an image without
+#     the model has none); a name of --indirect must exist, one of --indirect-opt may not.
 #   Functions without a .ci (newlib: memset, floorf, ...) get the frame their
 #     prologue shows in the ELF disassembly (largest push + vpush + sub sp), and
 #     are treated as leaves (newlib-nano's memset/floorf/ceilf are).
@@ -25,7 +29,7 @@
 # Output: the worst path with frames, the 8 largest frames, and with --guard one
 # line "guard-stack: N passed, N failed" (per-function limit, worst path <= region,
 # no recursion, no dynamic frames, every root found).
-guard=0; elf=; root=Reset_Handler; isrs=; indirect=; region=0; fnmax=0
+guard=0; elf=; root=Reset_Handler; isrs=; indirect=; indopt=; region=0; fnmax=0
 while [ $# -gt 0 ]; do
     case $1 in
     --guard) guard=1 ;;
@@ -33,6 +37,7 @@ while [ $# -gt 0 ]; do
     --root) root=$2; shift ;;
     --isr) isrs=$2; shift ;;
     --indirect) indirect=$2; shift ;;
+    --indirect-opt) indopt=$2; shift ;;
     --stack) region=$2; shift ;;
     --fn-max) fnmax=$2; shift ;;
     *) break ;;
@@ -60,7 +65,7 @@ asm_frames() {
 }
 
 { asm_frames; cat "$@"; } | awk -v guard="$guard" -v root="$root" -v isrs="$isrs" \
-    -v indirect="$indirect" -v region="$region" -v fnmax="$fnmax" '
+    -v indirect="$indirect" -v indopt="$indopt" -v region="$region" -v fnmax="$fnmax" '
 function bare(t) { sub(/.*:/, "", t); return t }
 # resolve an edge target to a defined node title
 function resolve(t,   b) {
@@ -130,6 +135,13 @@ END {
         if (!(t in frame)) { notfound = notfound " " ind[i]; continue }
         callee["__indirect_call", ++ncall["__indirect_call"]] = t
     }
+    nopt = split(indopt, iop, " "); optfound = ""
+    for (i = 1; i <= nopt; i++) { # the optional targets this image has
+        t = iop[i]; if (!(t in byname) && (t in sbyname)) t = sbyname[t]
+        if (!(t in frame)) continue
+        callee["__indirect_call", ++ncall["__indirect_call"]] = t
+        optfound = optfound " " iop[i]
+    }
     if (!(root in frame)) notfound = notfound " " root
     main_d = (root in frame) ? depth(root) : 0
     nisr = split(isrs, isr, " "); isr_d = 0; isr_w = ""
@@ -150,7 +162,7 @@ END {
     }
     printf "worst case: %d bytes = main path %d + exception frame %d + ISR %d;  stack region %d bytes (%d%%)\n",
         total, main_d, exc, isr_d, region, (region > 0 ? int(total * 100 / region) : 0)
-    printf "indirect calls charged with the deepest of: %s (%d bytes)\n", indirect, depth("__indirect_call")
+    printf "indirect calls charged with the deepest of: %s%s (%d bytes)\n", indirect, optfound, depth("__indirect_call")
     for (t in missing) lib = lib " " t
     for (t in kind) if (kind[t] == "asm") asml = asml " " bare(t) "=" frame[t]
     if (asml != "") printf "library leaves, frame from ELF prologue:%s\n", asml

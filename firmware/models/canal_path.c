@@ -561,6 +561,7 @@ int canal_path_check_begin(struct canal_path *tp, const struct canal_cfg *surf,
         return CP_ERR_INVAL;
     }
     tp->head.count = 0u; /* (until the check succeeds) */
+    tp->head.overlap = 0u; /* not checked for the canal (raster.h) */
     tp->head.k = 0u;
     err = canal_init(&tp->surf, surf);
     if (err != CP_OK) {

@@ -774,6 +774,73 @@ static const struct raster_rule channel_rule = {.aim = SAG_MARGIN, .accept = CP_
                                                 .start = 32u, .pilot = 1u, .grow_shift = 3u,
                                                 .clamp = 0u};
 
+/* channel_path_init, after channel_init: on a closed guide (the last centre on the first,
+ * within RASTER_SEAM_GAP x the centres' extent) the section must close too, or the duct
+ * steps at the seam: raster_seam_check (raster.h) of the semi-axes a, b and the exponent n
+ * (each value, and its slope per mm of guide arc: d/du divided by |L'|) and of the
+ * section's turn, the a axis's angle alpha in the frame (e1, e2) mod pi as the value
+ * (a - b) sin(alpha_end - alpha_start): about how far the turned section's points move,
+ * mm (0 for a = b, whose turn is no change). Length scale: the larger of the extent and
+ * the largest semi-axis. Not compared: the slope of the turn, the guide's tangent (a
+ * corner is the user's geometry). Returns CP_OK or CP_ERR_SEAM. */
+static CP_NOINLINE int seam_check(const struct channel *ch)
+{
+    const struct channel_cfg *cfg = ch->cfg;
+    struct channel_row r;
+    struct cp_vec3 d;
+    cp_real v[2][4], dv[2][3], len = CP_R(0.0), e = CP_R(0.0);
+    unsigned i, q;
+    int err = CP_OK;
+    for (i = 1u; i < ch->ns; i++) {
+        cp_v3_sub(&cfg->s[i].c, &cfg->s[0].c, &d);
+        e = cp_v3_norm(&d);
+        len = e > len ? e : len;
+    }
+    if (!(e <= RASTER_SEAM_GAP * len)) { /* e: the last centre's distance from the first */
+        return CP_OK;                      /* open: its ends may differ */
+    }
+    for (i = 0; i < 2u; i++) { /* the start (u = 0) and the end (u = N - 1) */
+        channel_row(ch, i ? (cp_real)(ch->ns - 1u) : CP_R(0.0), &r);
+        v[i][0] = r.ab[0];
+        v[i][1] = r.ab[1];
+        v[i][2] = r.n;
+        v[i][3] = r.alpha;
+        dv[i][0] = r.ab[0] * r.dab[0] / r.sp;          /* da/ds = a (a'/a) / |L'| */
+        dv[i][1] = r.ab[1] * r.dab[1] / r.sp;
+        dv[i][2] = -r.dq * r.n / (r.q * r.sp);         /* n = 2/q: n' = -q' n / q */
+        len = r.ab[0] > len ? r.ab[0] : len;
+    }
+    for (q = 0; q < 3u && err == CP_OK; q++) {
+        err = raster_seam_check(v[0][q], dv[0][q], CP_R(0.0), v[1][q], dv[1][q], CP_R(0.0), len);
+    }
+    if (err == CP_OK) { /* the turn: a value only (the slopes 0) */
+        cp_real sn, cs;
+        cp_sincos(v[1][3] - v[0][3], &sn, &cs);
+        e = (v[1][0] - v[1][1]) * sn;
+        err = raster_seam_check(CP_R(0.0), CP_R(0.0), CP_R(0.0), e, CP_R(0.0), CP_R(0.0), len);
+    }
+    return err;
+}
+
+/* raster_overlap_check's ball at u in [0, 1]: the guide point L(u (N - 1)) and a radius
+ * that holds the whole superellipse section there: with X = |x/a|^n, q = 2/n and a >= b,
+ * x^2 + y^2 <= a^2 (X^q + (1 - X)^q) <= a^2 max(1, 2^(1 - q)) (X^q + (1 - X)^q is convex
+ * for q >= 1, at most 1; concave for q < 1, at most 2^(1 - q) at X = 1/2); exact for a
+ * circle (a = b, q = 1), loose by up to sqrt 2 for a flat section with a large n. */
+static int ch_ball(const void *ctx, cp_real u, struct cp_vec3 *c, cp_real *r)
+{
+    const struct channel *ch = ctx;
+    struct channel_row row;
+    cp_real f = CP_R(1.0);
+    channel_row(ch, u * (cp_real)(ch->ns - 1u), &row);
+    if (row.q < CP_R(1.0)) { /* sqrt(2^(1 - q)) = e^((1 - q) ln 2 / 2) */
+        f = cp_exp(CP_R(0.5) * (CP_R(1.0) - row.q) * CP_R(0.69314718055994530942));
+    }
+    *c = row.l;
+    *r = row.ab[0] * f;
+    return CP_OK; /* (a non-finite ball: raster_overlap_check's CP_ERR_NUMERIC) */
+}
+
 int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
                       const struct raster_cfg *rs)
 {
@@ -783,12 +850,16 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
     int err;
     cp->head.count = 0u;
     cp->head.k = 0u;
+    cp->head.overlap = 0u;
     err = raster_check(rs, CP_PI);
     if (err == CP_OK && rs->tool_r > CHANNEL_COORD_MAX) {
         err = CP_ERR_TOOL;
     }
     if (err == CP_OK) {
         err = channel_init(&cp->ch, g);
+    }
+    if (err == CP_OK) {
+        err = seam_check(&cp->ch);
     }
     if (err != CP_OK) {
         return err;
@@ -824,6 +895,9 @@ int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
         if (err == CP_OK) {
             err = raster_fit_update(&fit, sag);
         }
+    }
+    if (err == CP_OK) { /* last: far parts of the duct that meet (reported: the tool inside) */
+        err = raster_overlap_report(ch_ball, &cp->ch, &cp->head);
     }
     if (err != CP_OK) {
         return err;

@@ -225,7 +225,16 @@ struct channel_path {
  *                    splines overshoot into no section); 0 < Q < 2P is clamped to a = b and
  *                    counted instead (cp->ch.clamps, a warning)
  *   CP_ERR_FOLD, CP_ERR_FRAME_REF  also on the walk
- *   CP_ERR_NUMERIC   a non-finite value on the walk */
+ *   CP_ERR_NUMERIC   a non-finite value on the walk
+ *   CP_ERR_SEAM      (right after channel_init) a closed guide (the last centre on the first,
+ *                    within RASTER_SEAM_GAP x the centres' extent) whose sections do not
+ *                    close: a, b or n (value, or slope per mm of guide) or the section's
+ *                    turn in its plane, beyond raster_seam_check's tolerances (raster.h)
+ * Last, far parts of the duct that meet are REPORTED, not refused (the ball is inside the
+ * duct): raster_overlap_report (raster.h) on the balls (L(u), a max(1, sqrt(2^(1 - 2/n)))),
+ * head.overlap = 1. The balls are loose for flat sections and at the open ends (a section is
+ * flat, its ball reaches a past it), so two ends facing each other within 2 a are reported
+ * too. */
 CP_MUST_CHECK int channel_path_init(struct channel_path *cp, const struct channel_cfg *g,
                                     const struct raster_cfg *raster);
 

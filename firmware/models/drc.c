@@ -1384,6 +1384,7 @@ int drc_path_init(struct drc_path *it, const struct drc_cfg *g, const struct ras
     int err;
     it->head.count = 0;
     it->head.k = 0;
+    it->head.overlap = 0u; /* not checked (raster.h) */
     it->line = -1;
     it->g = g;
     it->rc = rc;

@@ -752,6 +752,7 @@ int gsr_path_init(struct gsr_path *it, const struct gsr_cfg *geom, const struct 
         return CP_ERR_INVAL;
     }
     it->head.count = 0;
+    it->head.overlap = 0u; /* the tool is outside: an overlap is refused */
     err = gsr_init(&it->g, geom);
     if (err == CP_OK) {
         err = raster_check(rc, CP_PI);

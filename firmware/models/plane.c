@@ -24,6 +24,7 @@ int plane_path_init(struct plane_path *it, const struct plane_cfg *g, const stru
     }
     it->head.count = 0u;
     it->head.k = 0u;
+    it->head.overlap = 0u; /* a flat strip never meets itself */
     if (g == NULL || raster == NULL) {
         return CP_ERR_INVAL;
     }

@@ -263,3 +263,11 @@ int raster_overlap_check(raster_ball_fn ball, const void *ctx, cp_real grow,
     }
     return err;
 }
+
+int raster_overlap_report(raster_ball_fn ball, const void *ctx, struct raster_head *h)
+{
+    struct raster_overlap o;
+    int err = raster_overlap_check(ball, ctx, CP_R(0.0), &o);
+    h->overlap = err == CP_ERR_OVERLAP;
+    return err == CP_ERR_OVERLAP ? CP_OK : err;
+}

@@ -124,6 +124,9 @@ struct raster_head {
                        up to 2 CP_MAX_LINK + 1) */
     uint32_t count; /* points of the whole path, raster_count(n, steps, link); 0 until the
                        model's init succeeded */
+    uint8_t overlap; /* 1: the init found far parts of the sweep that meet, with the tool
+                        INSIDE (raster_overlap_report: reported, harmless); 0: none found, or
+                        a model that does not report (its init sets 0) */
     /* the position */
     uint32_t k;     /* points emitted so far = index of the next point, 0..count */
 };
@@ -329,5 +332,29 @@ struct raster_overlap {
  * pair whose gap < 0), or ball()'s error; CP_ERR_NUMERIC for a non-finite ball. */
 CP_MUST_CHECK int raster_overlap_check(raster_ball_fn ball, const void *ctx, cp_real grow,
                                        struct raster_overlap *o);
+
+/* ---- the report of an overlap with the tool inside (issue 22) ----
+ *
+ * Where the ball tool is INSIDE the swept spheres or sections (SPINE: the centre m - r n,
+ * r < R, so the ball lies in the sphere of its own point; the channel: the ball inside the
+ * duct, which its init's fold walks check against the wall's curvature; the canal's fillet),
+ * an overlap of far parts is NOT an error: the ball stays inside the swept solid near its
+ * own point, so it stays inside the union of all the sections, which is the cavity the
+ * job cuts. Where far parts overlap, the part of the streamed surface that lies inside
+ * another part's sphere or section is air: the tool cuts nothing there (time wasted, and a
+ * host sees points it did not expect). The model's init therefore REPORTS it:
+ * raster_overlap_report runs raster_overlap_check on the balls of the surface (grow 0: an
+ * inside ball never reaches beyond its own section) and sets h->overlap; the protocol shows
+ * the flag in the run's header and status reports (docs/PROTOCOL.md "Far parts that meet").
+ * What the flag means is raster_overlap_check's guarantee: 1 when two non-neighbouring
+ * pieces' capsules meet (it may be 1 for sections that come within about a piece's
+ * sagitta of touching, or for flat sections whose ball is loose), 0 when every such pair is
+ * apart. An outside tool (GSR) does not report: its overlap is CP_ERR_OVERLAP. */
+
+/* raster_overlap_check(ball, ctx, 0, ...) for an inside tool: h->overlap = 1 on
+ * CP_ERR_OVERLAP (then CP_OK), else 0. Returns CP_OK or the check's other errors (ball()'s
+ * own, CP_ERR_NUMERIC). Work: raster_overlap_check's. */
+CP_MUST_CHECK int raster_overlap_report(raster_ball_fn ball, const void *ctx,
+                                        struct raster_head *h);
 
 #endif /* RASTER_H */

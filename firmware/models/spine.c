@@ -1193,6 +1193,17 @@ static CP_NOINLINE int sp_fit(struct spine_path *it, const struct raster_cfg *rc
     return err; /* CP_OK: the last sp_setup was at the verified counts fit.m[] */
 }
 
+/* raster_overlap_check's ball at u: the sphere of the spine itself, centre c(u), radius
+ * R(u) (the surface is its envelope; the inside tool's ball lies in it). */
+static int sp_ball(const void *ctx, cp_real u, struct cp_vec3 *c, cp_real *r)
+{
+    struct spine_jet j;
+    spine_jet(ctx, u, &j);
+    *c = j.c;
+    *r = j.r;
+    return CP_OK; /* (finite: spine_init's samples bound every parameter) */
+}
+
 int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
                     const struct raster_cfg *rc)
 {
@@ -1202,6 +1213,7 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
         return CP_ERR_INVAL;
     }
     it->head.count = 0;
+    it->head.overlap = 0u;
     err = spine_init(&it->s, cfg, 1u); /* the geometry's checks first (N set below) */
     if (err == CP_OK) {
         err = raster_check(rc, CP_PI);
@@ -1250,6 +1262,9 @@ int spine_path_init(struct spine_path *it, const struct spine_cfg *cfg,
     it->nl = (uint16_t)(rc->mode == RASTER_LINES ? (uint32_t)(rc->n - 1u) * (link + 1u)
                                                  : it->head.steps);
     err = sp_check_patch(it);
+    if (err == CP_OK) { /* last: far parts whose spheres meet (reported: the tool inside) */
+        err = raster_overlap_report(sp_ball, &it->s, &it->head);
+    }
     if (err != CP_OK) {
         return err;
     }

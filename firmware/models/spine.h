@@ -282,7 +282,12 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
  * then at every streamed u and every march node, and every label of the patch (the streamed
  * lines and link labels; CIRCLES: the steps + 1 labels) the regularity D of the surface
  * (off = 0) and of the tool-centre surface (off = -r) must be > 0, else CP_ERR_CUSP (a cusp
- * strictly between those u or labels is not seen); CP_ERR_NUMERIC for a non-finite march. */
+ * strictly between those u or labels is not seen); CP_ERR_NUMERIC for a non-finite march.
+ * Last, far parts whose spheres meet (a helix of pitch below 2 R, a spine whose ends come
+ * close or that loops through itself) are REPORTED, not refused: the ball (m - r n, r < R)
+ * lies in its own sphere, so inside the swept solid (raster.h raster_overlap_report on the
+ * balls (c(u), R(u)): head.overlap = 1, docs/PROTOCOL.md "Far parts that meet, the tool
+ * inside"). */
 #define SPINE_PATH_NMIN 32u
 #if CP_REAL_DOUBLE
 #define SPINE_MARCH_TOL 2.0e-7 /* mm: the march's estimated error bound (double: 0.2 nm) */

@@ -50,6 +50,7 @@ int path_check_begin(struct path *p, struct path_check *c, uint8_t kind,
     p->info.steps = 0;
     p->info.link = 0;
     p->info.mode = 0;
+    p->info.overlap = 0;
     if (raster == NULL || geom == NULL || !path_has(kind)) {
         return CP_ERR_INVAL;
     }
@@ -88,6 +89,7 @@ int path_check_step(struct path *p, struct path_check *c, const struct raster_cf
     p->info.steps = (uint16_t)h->steps;
     p->info.link = h->link;
     p->info.mode = h->mode;
+    p->info.overlap = h->overlap;
     return CP_OK;
 }
 

@@ -59,6 +59,8 @@ struct path_info {
     uint16_t steps; /* steps per line (points per line = steps + 1) */
     uint16_t link;  /* link points between consecutive lines */
     uint8_t mode;   /* enum raster_mode: 0 lines, 1 circles/rings */
+    uint8_t overlap; /* raster_head.overlap: 1 = far parts of the sweep meet, the tool inside
+                        (reported, harmless: raster.h raster_overlap_report) */
 };
 
 struct path {

@@ -25,7 +25,8 @@
 #define FRAME_OVERHEAD 6u
 
 enum frame_type {
-    /* u32 count, u32 first point, u16 n, u16 steps, u16 link, u8 mode */
+    /* u32 count, u32 first point, u16 n, u16 steps, u16 link, u8 mode, u8 overlap (1: far
+     * parts of the sweep meet, the tool inside: reported, raster.h) */
     FRAME_BEGIN = 0x01,
     /* u32 k, i32 x, y, z (0.1 um), i16 nx, ny, nz (1/32767), i16 line, u16 index */
     FRAME_POINT = 0x02,

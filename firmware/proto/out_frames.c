@@ -5,7 +5,8 @@
 #include "out_frames.h"
 
 #define END_PAYLOAD 5u   /* u8 status, u32 points sent */
-#define BEGIN_PAYLOAD 15u /* u32 points, u32 first, u16 n, u16 steps, u16 link, u8 mode */
+#define BEGIN_PAYLOAD 16u /* u32 points, u32 first, u16 n, u16 steps, u16 link, u8 mode,
+                            u8 overlap */
 
 /* The points of the run: the items between BEGIN and END. */
 static uint32_t run_points(const struct out_run *run)
@@ -23,6 +24,7 @@ static int encode_begin(const struct out_run *run, const struct path *path, uint
     frame_put_u16(pl + 10, path->info.steps);
     frame_put_u16(pl + 12, path->info.link);
     pl[14] = path->info.mode;
+    pl[15] = path->info.overlap; /* 1: far parts meet, the tool inside (reported) */
     return frame_encode(0u, FRAME_BEGIN, pl, sizeof pl, out, cap);
 }
 

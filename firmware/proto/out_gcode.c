@@ -295,6 +295,9 @@ size_t out_gcode_start(struct out_gcode *g, struct out_run *run, const struct jo
     put_field(s, cap, &pos, ",n=", path->info.n);
     put_field(s, cap, &pos, ",steps=", path->info.steps);
     put_field(s, cap, &pos, ",link=", path->info.link);
+    if (path->info.overlap) { /* far parts meet, the tool inside: reported, harmless */
+        (void)fmt_str(s, cap, &pos, ",overlap=1");
+    }
     (void)fmt_str(s, cap, &pos, "]\n");
     return pos;
 }

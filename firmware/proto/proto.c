@@ -192,7 +192,8 @@ static int streaming(const struct proto *p)
 /* "<Idle>", "<Check|W:w|S:i/m>" (RUN's check: walk w of the patch, its step i of m;
  * path_check_progress) or "<Run|L:j/n|P:k/m>" ("<Hold|...>"): the line (or circle) j of
  * n of the last point sent, and k points of the job's m sent (k counts from the job's
- * first point: RESUME). */
+ * first point: RESUME); then "|Overlap:1" when the run's path reported far parts that
+ * meet (path_info.overlap). */
 static void reply_report(struct proto *p)
 {
     static const char *const names[4] = {[PROTO_IDLE] = "<Idle",
@@ -218,6 +219,11 @@ static void reply_report(struct proto *p)
         tx_field(p, "/", p->path.info.n);
         tx_field(p, "|P:", k);
         tx_field(p, "/", m);
+        /* an overlap the model's init reported (the tool inside: harmless) stays in
+         * every report of the run */
+        if (p->path.info.overlap) {
+            tx_str(p, "|Overlap:1");
+        }
     }
     tx_str(p, ">\n");
 }

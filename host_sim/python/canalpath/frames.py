@@ -35,7 +35,8 @@ GO = 0x85
 RESYNC = bytes([SYNC]) * 64
 
 _POINT = struct.Struct("<IiiihhhhH")   # k, x, y, z, nx, ny, nz, line, index (26 bytes)
-_BEGIN = struct.Struct("<IIHHHB")      # points, first, n, steps, link, mode (15 bytes)
+_BEGIN = struct.Struct("<IIHHHB")      # points, first, n, steps, link, mode (15 bytes), then
+                                       # u8 overlap (issue 22; absent before it)
 _END = struct.Struct("<BI")            # status, points (5 bytes)
 _crc = binascii.crc_hqx
 
@@ -98,6 +99,7 @@ class RunInfo:
     steps: int
     link: int        # link points between lines
     format: str      # "GCODE" or "FRAMES"
+    overlap: bool = False  # far parts of the sweep meet, the tool inside (issue 22: reported)
 
 
 @dataclass(frozen=True, slots=True)
@@ -117,7 +119,9 @@ def decode_point(payload: bytes | bytearray | memoryview) -> Point:
 def decode_begin(payload: bytes | bytearray | memoryview) -> RunInfo:
     """A BEGIN frame's payload."""
     points, first, n, steps, link, mode = _BEGIN.unpack_from(payload)
-    return RunInfo(points, first, "CIRCLES" if mode == 1 else "LINES", n, steps, link, "FRAMES")
+    overlap = len(payload) > _BEGIN.size and payload[_BEGIN.size] == 1
+    return RunInfo(points, first, "CIRCLES" if mode == 1 else "LINES", n, steps, link, "FRAMES",
+                   overlap)
 
 
 def decode_end(payload: bytes | bytearray | memoryview) -> EndInfo:

@@ -24,7 +24,8 @@ def parse_run_header(line: str) -> RunInfo | None:
     if m is None:
         return None
     p, f, mode, n, st, lk = m.groups()
-    return RunInfo(int(p), int(f), mode, int(n), int(st), int(lk), "GCODE")
+    return RunInfo(int(p), int(f), mode, int(n), int(st), int(lk), "GCODE",
+                   line.endswith(",overlap=1]"))
 
 
 def checksum(body: str) -> int:

@@ -68,6 +68,9 @@ def test_error_lines_parse_with_cause():
 def test_gcode_lines():
     info = parse_run_header("[RUN:points=4117,first=0,mode=LINES,n=8,steps=511,link=3]")
     assert info is not None and (info.points, info.steps, info.link, info.mode) == (4117, 511, 3, "LINES")
+    assert not info.overlap
+    o = parse_run_header("[RUN:points=1049,first=0,mode=LINES,n=2,steps=24,link=1,overlap=1]")
+    assert o is not None and o.overlap and o.points == 1049   # issue 22: reported, harmless
     p = parse_g1("G1 X9.7555 Y-0.2550 Z1.4980 F600", 1, info)
     assert p is not None and (p.x, p.y, p.z, p.line, p.index, p.normal) == (9.7555, -0.255, 1.498, 0, 1, None)
     assert parse_g1("G1 X9.7555 Y0.2550", 1, info) is None
