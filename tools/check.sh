@@ -41,10 +41,10 @@ fi
 LANES=${BUILD:-build}/check-lanes
 # run_step <step>: run it, keep its output, wall time and exit status in $LANES/<step>.*
 run_step() {
-    t0=$(date +%s)
+    step_t0=$(date +%s)
     $MAKE --no-print-directory "$1" > "$LANES/$1.out" 2>&1
     echo $? > "$LANES/$1.rc"
-    echo $(($(date +%s) - t0)) > "$LANES/$1.s"
+    echo $(($(date +%s) - step_t0)) > "$LANES/$1.s"
 }
 # count_step <step>: print what run_step kept and add it to the totals
 count_step() {
@@ -67,12 +67,12 @@ count_step() {
 rm -rf "$LANES" && mkdir -p "$LANES"
 if [ -n "$LANE_B" ]; then
     echo "== lanes: [$LANE_A] beside [$LANE_B]"
-    t0=$(date +%s)
+    lanes_t0=$(date +%s)
     (for s in $LANE_B; do run_step "$s"; done) &
     lane_b=$!
     for s in $LANE_A; do run_step "$s"; done
     wait "$lane_b"
-    echo "== lanes took $(($(date +%s) - t0)) s"
+    echo "== lanes took $(($(date +%s) - lanes_t0)) s"
     for s in $LANE_A $LANE_B; do count_step "$s"; done
 fi
 for s in $STEPS; do
