@@ -264,7 +264,7 @@ int raster_overlap_check(raster_ball_fn ball, const void *ctx, cp_real grow,
     return err;
 }
 
-int raster_overlap_report(raster_ball_fn ball, const void *ctx, struct raster_head *h)
+CP_NOINLINE int raster_overlap_report(raster_ball_fn ball, const void *ctx, struct raster_head *h)
 {
     struct raster_overlap o;
     int err = raster_overlap_check(ball, ctx, CP_R(0.0), &o);

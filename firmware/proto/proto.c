@@ -103,7 +103,7 @@ static void tx_error(struct proto *p, int code)
     tx_str(p, cp_status_text(code));
 }
 
-static void reply_status(struct proto *p, int code)
+static CP_NOINLINE void reply_status(struct proto *p, int code)
 {
     if (code == CP_ST_OK) {
         tx_str(p, "ok\n");
