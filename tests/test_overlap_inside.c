@@ -249,6 +249,16 @@ static double oi_depth(void)
                                  &ub);
 }
 
+/* The exact depth (ref_channel_far_depth: 129 sections x 48 boundary points against every
+ * far disk) takes about 30 s per duct in QEMU's soft double: the M4F build checks the
+ * firmware's flags and counts only; the host builds (float and double) also measure the
+ * depths and check them. */
+#ifdef __arm__
+#define OI_EXACT 0
+#else
+#define OI_EXACT 1
+#endif
+
 /* Far parts of a duct that meet, the tool inside: the loop carried on 0.5 rad past its
  * start (its last part runs through its first: their disks share points, the exact measure
  * finds a section's boundary inside a far disk) streams and is REPORTED; the loop left open
@@ -263,27 +273,27 @@ int test_overlap_channel(void)
     oi_angles(ang, -0.5);
     oi_loop(ang, same);
     CHECK_EQ_INT(oi_channel(), CP_OK);
-    depth = oi_depth();
+    depth = OI_EXACT ? oi_depth() : 0.0;
     TEST_NOTE("channel loop 0.5 rad past its start: overlap %u, exact far depth %.3f mm\n",
               (unsigned)oi_cp.head.overlap, depth);
-    CHECK(depth > 1.0);
+    CHECK(!OI_EXACT || depth > 1.0);
     CHECK_EQ_INT(oi_cp.head.overlap, 1);
     CHECK(channel_path_count(&oi_cp) > 0u);
     oi_angles(ang, 0.5);
     oi_loop(ang, same);
     CHECK_EQ_INT(oi_channel(), CP_OK);
-    depth = oi_depth();
+    depth = OI_EXACT ? oi_depth() : 0.0;
     TEST_NOTE("channel loop open by 0.5 rad: overlap %u, exact far depth %.3f mm\n",
               (unsigned)oi_cp.head.overlap, depth);
-    CHECK(depth < 0.0);
+    CHECK(!OI_EXACT || depth < 0.0);
     CHECK_EQ_INT(oi_cp.head.overlap, 0);
     oi_angles(ang, 0.12);
     oi_loop(ang, same);
     CHECK_EQ_INT(oi_channel(), CP_OK);
-    depth = oi_depth();
+    depth = OI_EXACT ? oi_depth() : 0.0;
     TEST_NOTE("channel loop open by 0.12 rad: overlap %u (the ends' balls), exact far depth "
               "%.3f mm\n", (unsigned)oi_cp.head.overlap, depth);
-    CHECK(depth < 0.0);
+    CHECK(!OI_EXACT || depth < 0.0);
     CHECK_EQ_INT(oi_cp.head.overlap, 1);
     return 0;
 }
