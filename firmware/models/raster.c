@@ -264,6 +264,7 @@ int raster_overlap_check(raster_ball_fn ball, const void *ctx, cp_real grow,
     return err;
 }
 
+/* (Not inlined: one copy for SPINE's and the channel's checks.) */
 CP_NOINLINE int raster_overlap_report(raster_ball_fn ball, const void *ctx, struct raster_head *h)
 {
     struct raster_overlap o;
