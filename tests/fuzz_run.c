@@ -74,6 +74,9 @@ static size_t scan;
 static char text[128];
 static size_t tlen;
 static int in_frames;     /* the run's frames are still coming (text comes after END/error) */
+static int begun;         /* the run's first frame (BEGIN) came: before it, RUN's check
+                             answers in text ('?': <Check|..>, Ctrl-X: error:20), and a
+                             text byte may look like a frame's length ('<' = 60) */
 static int finished;      /* the closing text line arrived */
 static int saw_ver;       /* the $I answer's "[VER:" line arrived (finished is reset there) */
 static int last_seq = -1; /* seq of the newest frame received */
@@ -110,7 +113,7 @@ static struct start {
     struct frame_rx frx;
     char text[sizeof text];
     size_t tlen;
-    int in_frames, finished, last_seq;
+    int in_frames, begun, finished, last_seq;
 } *starts[NJOBS][FIRST_MAX];
 
 static void host_bytes(const void *b, size_t n)
@@ -152,6 +155,8 @@ static void text_line(void)
             FAIL("bad error line \"%s\"", text);
         }
         finished = 1;
+    } else if (in_frames && !begun && text[0] == '<' && text[tlen - 1] == '>') {
+        /* '?' during RUN's check: its report; the frames still follow */
     } else if (!in_frames && (text[0] == '[' || (text[0] == '<' && text[tlen - 1] == '>'))) {
         /* $I answer, or a status report ('?' in the bytes after the run ended) */
         if (strncmp(text, "[VER:", 5) == 0) {
@@ -232,7 +237,18 @@ static void observe(void)
 {
     while (scan < mem.out_len) {
         uint8_t c = mem.out[scan++];
+        if (in_frames && !begun && (c == '\n' || (c >= 0x20u && c <= 0x7Eu && c != FRAME_SYNC))) {
+            /* RUN's check answers in text before the first frame */
+            if (c == '\n') {
+                text_line();
+                in_frames = !finished; /* an error: no frames come */
+            } else if (tlen < sizeof text - 1) {
+                text[tlen++] = (char)c;
+            }
+            continue;
+        }
         if (in_frames) {
+            begun = 1;
             if (frame_rx_feed(&frx, c)) {
                 frame_in(frx.buf);
                 tlen = 0;
@@ -368,6 +384,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         last_seq = -1;
         frame_rx_init(&frx);
         in_frames = 1;
+        begun = 0;
         finished = 0;
         if (first == 0u) {
             host_bytes("RUN\n", 4);
@@ -386,6 +403,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memcpy(st->text, text, sizeof text);
         st->tlen = tlen;
         st->in_frames = in_frames;
+        st->begun = begun;
         st->finished = finished;
         st->last_seq = last_seq;
         starts[j][first] = st;
@@ -396,6 +414,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memcpy(text, st->text, sizeof text);
         tlen = st->tlen;
         in_frames = st->in_frames;
+        begun = st->begun;
         finished = st->finished;
         last_seq = st->last_seq;
     }
