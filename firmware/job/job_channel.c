@@ -25,8 +25,8 @@ int job_channel_ready(const struct job *j)
 }
 
 /* Store section s (checked: channel_section_check) as section i (the next one or the
- * last). Returns a wire status. */
-static int channel_store(struct job *j, const struct channel_section *s, unsigned i)
+ * last). Returns a wire status. (Not inlined: LTO had copied it into SECTION and AXES.) */
+static CP_NOINLINE int channel_store(struct job *j, const struct channel_section *s, unsigned i)
 {
     struct channel_cfg *g = &j->geom.channel;
     int st = channel_section_check(s);
