@@ -43,17 +43,12 @@ static int channel_section(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     struct channel_section s;
-    unsigned i;
     if (j->geom.channel.count >= CP_MAX_SECTIONS) {
         a->limit = "SECTIONS CLEAR";
         return CP_ST_TOO_MANY;
     }
-    for (i = 6u; i < 9u; i++) { /* the angles */
-        if (cp_fabs(v[i]) > CP_R(360.0)) {
-            a->bad = (uint8_t)(JOB_ARG_V + i);
-            a->limit = "|angle| <= 360";
-            return CP_ST_OUT_OF_RANGE;
-        }
+    if (job_limit_abs(a, 6u, 9u, CP_R(360.0), "|angle| <= 360") != CP_ST_OK) { /* the angles */
+        return CP_ST_OUT_OF_RANGE;
     }
     s.a = v[0];
     s.b = v[1];

@@ -69,13 +69,10 @@ int job_spine_command(struct job *j, struct job_args *a)
     struct spine_cfg *c = &j->geom.spine;
     cp_real *v = a->v;
     unsigned na = a->na, i, kind;
-    for (i = 0; i < na; i++) {
-        int span = a->word == JOB_WORD_SPINE_ARC && i == 7u;
-        if (!(cp_fabs(v[i]) <= (span ? CP_R(360.0) : SPINE_COORD_MAX))) {
-            a->bad = (uint8_t)(JOB_ARG_V + i);
-            a->limit = span ? "|span| <= 360" : "|x| <= 1e4";
-            return CP_ST_OUT_OF_RANGE;
-        }
+    unsigned coords = a->word == JOB_WORD_SPINE_ARC ? 7u : na; /* ARC's 8th: the span */
+    if (job_limit_abs(a, 0u, coords, SPINE_COORD_MAX, "|x| <= 1e4") != CP_ST_OK ||
+        job_limit_abs(a, coords, na, CP_R(360.0), "|span| <= 360") != CP_ST_OK) {
+        return CP_ST_OUT_OF_RANGE;
     }
     switch (a->cmd) {
     case SPINE_CMD_SPINE:
