@@ -665,6 +665,13 @@ void job_dump_numbers(struct job_args *a, const cp_real *v)
     }
 }
 
+CP_NOINLINE void job_dump_vec3(struct job_args *a, unsigned k, const struct cp_vec3 *p)
+{
+    a->v[k] = p->x;
+    a->v[k + 1u] = p->y;
+    a->v[k + 2u] = p->z;
+}
+
 /* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at
  * the default. */
 static const uint8_t dump_cmds[] = {

@@ -338,6 +338,9 @@ void job_dump_numbers(struct job_args *a, const cp_real *v);
 int job_limit_abs(struct job_args *a, unsigned first, unsigned end, cp_real max,
                   const char *limit);
 
+/* The dumped line's numbers k, k + 1, k + 2: the point or vector p's x, y, z. */
+void job_dump_vec3(struct job_args *a, unsigned k, const struct cp_vec3 *p);
+
 /* The enum job_shape of command c (commands.def's SHAPE). */
 unsigned job_shape_of(enum job_cmd c);
 

@@ -114,18 +114,12 @@ int job_channel_dump(const struct job *j, unsigned i, struct job_args *a)
         a->v[0] = s->a;
         a->v[1] = s->b;
         a->v[2] = s->n;
-        a->v[3] = s->c.x;
-        a->v[4] = s->c.y;
-        a->v[5] = s->c.z; /* the angles 0 */
+        job_dump_vec3(a, 3u, &s->c); /* the angles 0 */
         return JOB_DUMP_LINE;
     }
     job_dump_args(a, CHANNEL_CMD_AXES, JOB_NO_WORD);
     a->na = 6u;
-    a->v[0] = s->x.x;
-    a->v[1] = s->x.y;
-    a->v[2] = s->x.z;
-    a->v[3] = s->z.x;
-    a->v[4] = s->z.y;
-    a->v[5] = s->z.z;
+    job_dump_vec3(a, 0u, &s->x);
+    job_dump_vec3(a, 3u, &s->z);
     return JOB_DUMP_LINE;
 }

@@ -187,9 +187,7 @@ static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a
     if (i < 12u) { /* FRAME [N0 ref], FRAME */
         unsigned f = i == 10u ? GSR_FRAME_N0 : c->frame;
         job_dump_word(a, GSR_CMD_FRAME, f);
-        a->v[0] = c->ref.x;
-        a->v[1] = c->ref.y;
-        a->v[2] = c->ref.z;
+        job_dump_vec3(a, 0u, &c->ref);
         return (c->set & SET_FRAME) != 0u &&
                (i == 11u || (ref && c->frame != GSR_FRAME_N0 && c->frame != GSR_FRAME_RMF));
     }
