@@ -385,6 +385,18 @@ static CP_NOINLINE int refuse(struct job_args *a, int st, unsigned bad, const ch
     return st;
 }
 
+int job_limit_abs(struct job_args *a, unsigned first, unsigned end, cp_real max,
+                  const char *limit)
+{
+    unsigned i;
+    for (i = first; i < end; i++) {
+        if (!(cp_fabs(a->v[i]) <= max)) {
+            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + i, limit);
+        }
+    }
+    return CP_ST_OK;
+}
+
 /* TOOL NONE | BALL r [TIP|CENTRE|CENTER] */
 static int job_tool(struct job *j, struct job_args *a)
 {
@@ -417,9 +429,8 @@ static int job_raster(struct job *j, struct job_args *a)
     if (n == 0u) {
         return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_U, "n >= 1");
     }
-    if (cp_fabs(v[0]) > CP_R(180.0) || cp_fabs(v[1]) > CP_R(180.0)) {
-        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + (cp_fabs(v[0]) > CP_R(180.0) ? 0u : 1u),
-                      "|u| <= 180");
+    if (job_limit_abs(a, 0u, 2u, CP_R(180.0), "|u| <= 180") != CP_ST_OK) {
+        return CP_ST_OUT_OF_RANGE;
     }
     if (v[0] == v[1] && n > 1u) {
         return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "u0 != u1 for n > 1");
@@ -456,23 +467,17 @@ static int job_place_cmd(struct job *j, struct job_args *a)
     const cp_real *v = a->v;
     unsigned i;
     if (a->cmd == JOB_CMD_TILT) {
-        if (!(cp_fabs(v[0]) <= JOB_TILT_AXIS_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|axis| <= 360");
-        }
-        if (!(cp_fabs(v[1]) <= JOB_TILT_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "|angle| <= 90");
+        if (job_limit_abs(a, 0u, 1u, JOB_TILT_AXIS_MAX, "|axis| <= 360") != CP_ST_OK ||
+            job_limit_abs(a, 1u, 2u, JOB_TILT_MAX, "|angle| <= 90") != CP_ST_OK) {
+            return CP_ST_OUT_OF_RANGE;
         }
         pl->axis = v[0];
         pl->tilt = v[1];
         return CP_ST_OK;
     }
-    for (i = 0; i < 3u; i++) {
-        if (!(cp_fabs(v[i]) <= JOB_PLACE_OFF_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + i, "|x|, |y|, |z| <= 1000");
-        }
-    }
-    if (a->na == 4u && !(cp_fabs(v[3]) <= JOB_PLACE_RZ_MAX)) {
-        return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 3u, "|rz| <= 360");
+    if (job_limit_abs(a, 0u, 3u, JOB_PLACE_OFF_MAX, "|x|, |y|, |z| <= 1000") != CP_ST_OK ||
+        job_limit_abs(a, 3u, a->na, JOB_PLACE_RZ_MAX, "|rz| <= 360") != CP_ST_OK) {
+        return CP_ST_OUT_OF_RANGE; /* (rz: the 4th number, when given) */
     }
     for (i = 0; i < 3u; i++) {
         pl->off[i] = v[i];
@@ -530,8 +535,8 @@ static int job_own_command(struct job *j, struct job_args *a)
     case JOB_CMD_FEED:
         return job_feed(j, a);
     case JOB_CMD_SAFE:
-        if (!(cp_fabs(v[0]) <= JOB_SAFE_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|z| <= 1000");
+        if (job_limit_abs(a, 0u, 1u, JOB_SAFE_MAX, "|z| <= 1000") != CP_ST_OK) {
+            return CP_ST_OUT_OF_RANGE;
         }
         j->safe = v[0];
         j->safe_set = 1u;
@@ -552,11 +557,10 @@ static int job_own_command(struct job *j, struct job_args *a)
         j->link = (uint8_t)a->value; /* enum job_link */
         return CP_ST_OK;
     case JOB_CMD_TOOLAXIS:
-        if (a->na == 2u && !(cp_fabs(v[0]) <= JOB_TOOLAXIS_ANGLE_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V, "|lead| <= 60");
-        }
-        if (a->na == 2u && !(cp_fabs(v[1]) <= JOB_TOOLAXIS_ANGLE_MAX)) {
-            return refuse(a, CP_ST_OUT_OF_RANGE, JOB_ARG_V + 1u, "|side| <= 60");
+        if (a->na == 2u &&
+            (job_limit_abs(a, 0u, 1u, JOB_TOOLAXIS_ANGLE_MAX, "|lead| <= 60") != CP_ST_OK ||
+             job_limit_abs(a, 1u, 2u, JOB_TOOLAXIS_ANGLE_MAX, "|side| <= 60") != CP_ST_OK)) {
+            return CP_ST_OUT_OF_RANGE;
         }
         j->toolaxis = (uint8_t)a->value;
         j->lead = a->na == 2u ? v[0] : CP_R(0.0);
@@ -659,6 +663,13 @@ void job_dump_numbers(struct job_args *a, const cp_real *v)
     for (i = 0; i < a->na && i < JOB_MAX_NUMBERS; i++) {
         a->v[i] = v[i];
     }
+}
+
+CP_NOINLINE void job_dump_vec3(struct job_args *a, unsigned k, const struct cp_vec3 *p)
+{
+    a->v[k] = p->x;
+    a->v[k + 1u] = p->y;
+    a->v[k + 2u] = p->z;
 }
 
 /* The items of job.c's own commands (JOB_DUMP_ITEMS_OWN of them), in this order; SKIP at

@@ -332,6 +332,15 @@ void job_dump_word(struct job_args *a, enum job_cmd c, unsigned value);
 /* The dumped line's numbers: a->v[0..a->na) = v[0..a->na) (a->na as set above). */
 void job_dump_numbers(struct job_args *a, const cp_real *v);
 
+/* A command's range check: every number a->v[first..end) within |x| <= max, else
+ * CP_ST_OUT_OF_RANGE naming the first one that is not (a->bad) and `limit` (the cause's
+ * text, "|x| <= 1e4"). Returns CP_ST_OK or CP_ST_OUT_OF_RANGE. */
+int job_limit_abs(struct job_args *a, unsigned first, unsigned end, cp_real max,
+                  const char *limit);
+
+/* The dumped line's numbers k, k + 1, k + 2: the point or vector p's x, y, z. */
+void job_dump_vec3(struct job_args *a, unsigned k, const struct cp_vec3 *p);
+
 /* The enum job_shape of command c (commands.def's SHAPE). */
 unsigned job_shape_of(enum job_cmd c);
 

@@ -24,17 +24,23 @@ int job_canal_ready(const struct job *j)
     return (j->have & JOB_HAVE_ALL) == JOB_HAVE_ALL; /* CURVE, RADIUS, LINES or CIRCLES */
 }
 
+/* The command's numbers into dst[0..cnt), the rest 0 (CURVE, RADIUS; not inlined: one copy). */
+static CP_NOINLINE void take_numbers(cp_real *dst, unsigned cnt, const struct job_args *a)
+{
+    unsigned i;
+    for (i = 0; i < cnt; i++) {
+        dst[i] = i < a->na ? a->v[i] : CP_R(0.0);
+    }
+}
+
 /* (not inlined: its copy of the canal's geometry stays out of the line handler's frame) */
 CP_NOINLINE int job_canal_command(struct job *j, struct job_args *a)
 {
     struct canal_cfg t = j->canal; /* the job unchanged on error */
-    unsigned i;
     int err;
     switch (a->cmd) {
     case CANAL_CMD_CURVE: /* the word's numbers, the rest 0 */
-        for (i = 0; i < sizeof t.cp / sizeof t.cp[0]; i++) {
-            t.cp[i] = i < a->na ? a->v[i] : CP_R(0.0);
-        }
+        take_numbers(t.cp, sizeof t.cp / sizeof t.cp[0], a);
         if (a->word == JOB_WORD_CURVE_ARC || a->word == JOB_WORD_CURVE_ELLIPSE) {
             t.cp[a->na - 2u] *= CP_DEG2RAD; /* the two angles come last */
             t.cp[a->na - 1u] *= CP_DEG2RAD;
@@ -43,9 +49,7 @@ CP_NOINLINE int job_canal_command(struct job *j, struct job_args *a)
         err = canal_curve_check(&t); /* canal_init's checks of the curve alone */
         break;
     case CANAL_CMD_RADIUS:
-        for (i = 0; i < sizeof t.rp / sizeof t.rp[0]; i++) {
-            t.rp[i] = i < a->na ? a->v[i] : CP_R(0.0);
-        }
+        take_numbers(t.rp, sizeof t.rp / sizeof t.rp[0], a);
         t.radius = (uint8_t)a->value; /* enum canal_radius_kind */
         err = canal_radius_check(&t); /* canal_init's checks of the law alone */
         break;

@@ -25,8 +25,8 @@ int job_channel_ready(const struct job *j)
 }
 
 /* Store section s (checked: channel_section_check) as section i (the next one or the
- * last). Returns a wire status. */
-static int channel_store(struct job *j, const struct channel_section *s, unsigned i)
+ * last). Returns a wire status. (Not inlined: LTO had copied it into SECTION and AXES.) */
+static CP_NOINLINE int channel_store(struct job *j, const struct channel_section *s, unsigned i)
 {
     struct channel_cfg *g = &j->geom.channel;
     int st = channel_section_check(s);
@@ -43,17 +43,12 @@ static int channel_section(struct job *j, struct job_args *a)
 {
     const cp_real *v = a->v;
     struct channel_section s;
-    unsigned i;
     if (j->geom.channel.count >= CP_MAX_SECTIONS) {
         a->limit = "SECTIONS CLEAR";
         return CP_ST_TOO_MANY;
     }
-    for (i = 6u; i < 9u; i++) { /* the angles */
-        if (cp_fabs(v[i]) > CP_R(360.0)) {
-            a->bad = (uint8_t)(JOB_ARG_V + i);
-            a->limit = "|angle| <= 360";
-            return CP_ST_OUT_OF_RANGE;
-        }
+    if (job_limit_abs(a, 6u, 9u, CP_R(360.0), "|angle| <= 360") != CP_ST_OK) { /* the angles */
+        return CP_ST_OUT_OF_RANGE;
     }
     s.a = v[0];
     s.b = v[1];
@@ -119,18 +114,12 @@ int job_channel_dump(const struct job *j, unsigned i, struct job_args *a)
         a->v[0] = s->a;
         a->v[1] = s->b;
         a->v[2] = s->n;
-        a->v[3] = s->c.x;
-        a->v[4] = s->c.y;
-        a->v[5] = s->c.z; /* the angles 0 */
+        job_dump_vec3(a, 3u, &s->c); /* the angles 0 */
         return JOB_DUMP_LINE;
     }
     job_dump_args(a, CHANNEL_CMD_AXES, JOB_NO_WORD);
     a->na = 6u;
-    a->v[0] = s->x.x;
-    a->v[1] = s->x.y;
-    a->v[2] = s->x.z;
-    a->v[3] = s->z.x;
-    a->v[4] = s->z.y;
-    a->v[5] = s->z.z;
+    job_dump_vec3(a, 0u, &s->x);
+    job_dump_vec3(a, 3u, &s->z);
     return JOB_DUMP_LINE;
 }

@@ -93,12 +93,10 @@ int job_gsr_command(struct job *j, struct job_args *a)
     cp_real *v = a->v;
     unsigned k = a->value, na = a->na, i;
     int err;
-    for (i = 0; i < na; i++) { /* i = GSR_W only in a function (7 numbers) */
-        if (!(cp_fabs(v[i]) <= (i == GSR_W ? CP_R(23040.0) : GSR_COEF_MAX))) {
-            a->bad = (uint8_t)(JOB_ARG_V + i);
-            a->limit = i == GSR_W ? "|w| <= 23040" : "|x| <= 1e4";
-            return CP_ST_OUT_OF_RANGE;
-        }
+    /* w (GSR_W, the last number) only in a function (GSR_FN numbers) */
+    if (job_limit_abs(a, 0u, na == GSR_FN ? GSR_W : na, GSR_COEF_MAX, "|x| <= 1e4") != CP_ST_OK ||
+        job_limit_abs(a, GSR_W, na, CP_R(23040.0), "|w| <= 23040") != CP_ST_OK) {
+        return CP_ST_OUT_OF_RANGE;
     }
     if (na == GSR_FN) {
         v[GSR_W] *= CP_DEG2RAD;
@@ -189,9 +187,7 @@ static int gsr_dump_item(const struct gsr_cfg *c, unsigned i, struct job_args *a
     if (i < 12u) { /* FRAME [N0 ref], FRAME */
         unsigned f = i == 10u ? GSR_FRAME_N0 : c->frame;
         job_dump_word(a, GSR_CMD_FRAME, f);
-        a->v[0] = c->ref.x;
-        a->v[1] = c->ref.y;
-        a->v[2] = c->ref.z;
+        job_dump_vec3(a, 0u, &c->ref);
         return (c->set & SET_FRAME) != 0u &&
                (i == 11u || (ref && c->frame != GSR_FRAME_N0 && c->frame != GSR_FRAME_RMF));
     }

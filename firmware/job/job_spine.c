@@ -69,13 +69,10 @@ int job_spine_command(struct job *j, struct job_args *a)
     struct spine_cfg *c = &j->geom.spine;
     cp_real *v = a->v;
     unsigned na = a->na, i, kind;
-    for (i = 0; i < na; i++) {
-        int span = a->word == JOB_WORD_SPINE_ARC && i == 7u;
-        if (!(cp_fabs(v[i]) <= (span ? CP_R(360.0) : SPINE_COORD_MAX))) {
-            a->bad = (uint8_t)(JOB_ARG_V + i);
-            a->limit = span ? "|span| <= 360" : "|x| <= 1e4";
-            return CP_ST_OUT_OF_RANGE;
-        }
+    unsigned coords = a->word == JOB_WORD_SPINE_ARC ? 7u : na; /* ARC's 8th: the span */
+    if (job_limit_abs(a, 0u, coords, SPINE_COORD_MAX, "|x| <= 1e4") != CP_ST_OK ||
+        job_limit_abs(a, coords, na, CP_R(360.0), "|span| <= 360") != CP_ST_OK) {
+        return CP_ST_OUT_OF_RANGE;
     }
     switch (a->cmd) {
     case SPINE_CMD_SPINE:
@@ -130,16 +127,17 @@ int job_spine_command(struct job *j, struct job_args *a)
  * 6 SPINEREF (not 0 0 0). */
 int job_spine_dump(const struct job *j, unsigned i, struct job_args *a)
 {
+    /* SPINEDIR's and SPINEREF's defaults (not dumped) */
+    static const cp_real dflt[2][3] = {{CP_R(1.0), CP_R(0.0), CP_R(0.0)},
+                                       {CP_R(0.0), CP_R(0.0), CP_R(0.0)}};
     const struct spine_cfg *c = &j->geom.spine;
-    unsigned k;
+    const cp_real *v, *d;
     if (i > 6u) {
         return JOB_DUMP_END;
     }
     if (i < 4u) {
         job_dump_args(a, SPINE_CMD_SPINE, (enum job_word)(JOB_WORD_SPINE_P0 + i));
-        for (k = 0; k < 3u; k++) {
-            a->v[k] = c->sp[3u * i + k];
-        }
+        job_dump_numbers(a, &c->sp[3u * i]); /* P<i>: its 3 coordinates */
         return c->kind == SPINE_BEZIER && (c->set & (1u << i)) != 0u ? JOB_DUMP_LINE
                                                                      : JOB_DUMP_SKIP;
     }
@@ -147,10 +145,8 @@ int job_spine_dump(const struct job *j, unsigned i, struct job_args *a)
         if (c->kind == SPINE_BEZIER || (c->set & SET_SPINE) == 0u) {
             return JOB_DUMP_SKIP;
         }
-        job_dump_args(a, SPINE_CMD_SPINE, job_word_of(SPINE_CMD_SPINE, c->kind, 0u));
-        for (k = 0; k < a->na; k++) {
-            a->v[k] = c->sp[k];
-        }
+        job_dump_word(a, SPINE_CMD_SPINE, c->kind);
+        job_dump_numbers(a, c->sp);
         if (c->kind == SPINE_ARC) {
             a->v[7] = c->sp[10];
             a->scale[7] = JOB_SCALE_DEG;
@@ -159,16 +155,10 @@ int job_spine_dump(const struct job *j, unsigned i, struct job_args *a)
     }
     job_dump_args(a, i == 5u ? SPINE_CMD_SPINEDIR : SPINE_CMD_SPINEREF, JOB_NO_WORD);
     a->na = 3u;
-    for (k = 0; k < 3u; k++) {
-        a->v[k] = i == 5u ? c->dir[k] : c->ref[k];
-    }
-    if (i == 5u) {
-        return a->v[0] == CP_R(1.0) && a->v[1] == CP_R(0.0) && a->v[2] == CP_R(0.0)
-                   ? JOB_DUMP_SKIP
-                   : JOB_DUMP_LINE;
-    }
-    return a->v[0] == CP_R(0.0) && a->v[1] == CP_R(0.0) && a->v[2] == CP_R(0.0) ? JOB_DUMP_SKIP
-                                                                               : JOB_DUMP_LINE;
+    v = i == 5u ? c->dir : c->ref;
+    d = dflt[i - 5u];
+    job_dump_numbers(a, v);
+    return v[0] == d[0] && v[1] == d[1] && v[2] == d[2] ? JOB_DUMP_SKIP : JOB_DUMP_LINE;
 }
 
 #else

@@ -25,7 +25,8 @@ int parse_is(const char *s, size_t n, const char *kw)
     return kw[n] == '\0';
 }
 
-int parse_is_any(const char *s, size_t n, const char *const *kws, unsigned cnt)
+/* (Not inlined: LTO had copied it into parse_real and exec_line.) */
+CP_NOINLINE int parse_is_any(const char *s, size_t n, const char *const *kws, unsigned cnt)
 {
     unsigned k;
     for (k = 0; k < cnt; k++) {

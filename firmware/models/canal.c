@@ -471,11 +471,9 @@ void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *res
     jet_eval(c, t, j, 0);
 }
 
-/* The fields a point needs; returns 1/|C'|. */
-static CP_ALWAYS_INLINE cp_real frame_point_part(const struct canal_jet *restrict j, cp_real c2,
-                                                 struct canal_frame *restrict f)
+cp_real canal_frame_pt(const struct canal_jet *restrict j, struct canal_frame *restrict f)
 {
-    cp_real ic = CP_R(1.0) / cp_sqrt(c2);
+    cp_real ic = CP_R(1.0) / cp_sqrt(j->dx * j->dx + j->dy * j->dy);
     f->x = j->x;
     f->y = j->y;
     f->tx = j->dx * ic;
@@ -486,15 +484,11 @@ static CP_ALWAYS_INLINE cp_real frame_point_part(const struct canal_jet *restric
     return ic;
 }
 
-void canal_frame_pt(const struct canal_jet *restrict j, struct canal_frame *restrict f)
-{
-    (void)frame_point_part(j, j->dx * j->dx + j->dy * j->dy, f);
-}
-
+/* The point's part (canal_frame_pt), then the curvature fields kappa and dpds. */
 void canal_frame(const struct canal_jet *restrict j, struct canal_frame *restrict f)
 {
     cp_real c2 = j->dx * j->dx + j->dy * j->dy;
-    cp_real ic = frame_point_part(j, c2, f);
+    cp_real ic = canal_frame_pt(j, f);
     cp_real ic2 = ic * ic;
     cp_real q = j->dx * j->ddy - j->dy * j->ddx;
     cp_real pp = j->ddr * c2 - j->dr * (j->dx * j->ddx + j->dy * j->ddy);

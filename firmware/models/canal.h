@@ -155,8 +155,9 @@ void canal_jet(const struct canal *restrict c, cp_real t, struct canal_jet *rest
 void canal_jet1(const struct canal *restrict c, cp_real t, struct canal_jet *restrict j);
 
 /* The part of the frame a point needs (x, y, tx, ty, r, p, q2); kappa and dpds are left
- * unset (they are for canal_regularity). Same values as canal_frame for those fields. */
-void canal_frame_pt(const struct canal_jet *restrict j, struct canal_frame *restrict f);
+ * unset (they are for canal_regularity). Same values as canal_frame for those fields.
+ * Returns 1/|C'|. */
+cp_real canal_frame_pt(const struct canal_jet *restrict j, struct canal_frame *restrict f);
 
 /* Per-t frame from a jet. Requires |C'| > 0 (guaranteed on [t0, t1] by canal_init). */
 void canal_frame(const struct canal_jet *restrict j, struct canal_frame *restrict f);

@@ -156,8 +156,9 @@ static cp_real line_u0(const struct canal_path *tp, uint32_t j)
 }
 
 /* Half start angle x_j = u0 / 2 + j d of family-2 line j (ANGLE labels), d = lab_d.
- * The one formula every caller uses, so a label is the same bits whenever it is made. */
-static cp_real line_half_angle(const struct canal_path *tp, uint32_t j)
+ * The one formula every caller uses, so a label is the same bits whenever it is made.
+ * (Not inlined: one copy for line_label and line_labels; called once per line.) */
+static CP_NOINLINE cp_real line_half_angle(const struct canal_path *tp, uint32_t j)
 {
     return CP_R(0.5) * tp->u0 + (cp_real)j * tp->lab_d;
 }

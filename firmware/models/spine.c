@@ -837,8 +837,9 @@ cp_real spine_regularity(const struct spine_state *st, cp_real ct, cp_real sn, c
 
 /* ---------------------------------------------------------------------- iterator */
 
-/* The label theta0 of label index l (0..nl). */
-static cp_real sp_lab(const struct spine_path *it, uint32_t l)
+/* The label theta0 of label index l (0..nl). (Not inlined: LTO had copied it into
+ * sp_emit and into sp_check_at's label loop.) */
+static CP_NOINLINE cp_real sp_lab(const struct spine_path *it, uint32_t l)
 {
     if (it->nl == 0u) {
         return it->u0;

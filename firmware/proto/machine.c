@@ -117,42 +117,60 @@ void machine_link_init(struct machine_link *l, const struct hal_uart *uart)
     l->tx_len = l->tx_pos = 0u;
 }
 
-int machine_link_flush(struct machine_link *l)
+size_t link_tx_room(uint8_t *buf, size_t cap, uint16_t *len, uint16_t *pos)
+{
+    if (*pos > 0u) { /* compact the unsent tail to the front */
+        uint16_t i, k = (uint16_t)(*len - *pos);
+        for (i = 0; i < k; i++) {
+            buf[i] = buf[*pos + i];
+        }
+        *len = k;
+        *pos = 0u;
+    }
+    return cap - *len;
+}
+
+void link_tx_put(uint8_t *buf, size_t cap, uint16_t *len, const char *s, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n && *len < cap; i++) {
+        buf[(*len)++] = (uint8_t)s[i];
+    }
+}
+
+int link_tx_flush(const struct hal_uart *uart, const uint8_t *buf, uint16_t *len, uint16_t *pos)
 {
     int n;
-    if (l->uart == NULL || l->tx_pos >= l->tx_len) {
+    if (*pos >= *len) {
         return 0;
     }
-    n = hal_uart_write(l->uart, l->tx + l->tx_pos, (size_t)(l->tx_len - l->tx_pos));
+    n = hal_uart_write(uart, buf + *pos, (size_t)(*len - *pos));
     if (n < 0) {
         return CP_ERR_IO;
     }
-    l->tx_pos = (uint16_t)(l->tx_pos + (uint16_t)n);
-    if (l->tx_pos == l->tx_len) {
-        l->tx_pos = l->tx_len = 0u;
+    *pos = (uint16_t)(*pos + (uint16_t)n);
+    if (*pos == *len) {
+        *pos = *len = 0u;
     }
     return n > 0;
 }
 
+int machine_link_flush(struct machine_link *l)
+{
+    if (l->uart == NULL) {
+        return 0;
+    }
+    return link_tx_flush(l->uart, l->tx, &l->tx_len, &l->tx_pos);
+}
+
 size_t machine_link_room(struct machine_link *l)
 {
-    if (l->tx_pos > 0u) { /* compact the unsent tail to the front */
-        uint16_t i, k = (uint16_t)(l->tx_len - l->tx_pos);
-        for (i = 0; i < k; i++) {
-            l->tx[i] = l->tx[l->tx_pos + i];
-        }
-        l->tx_len = k;
-        l->tx_pos = 0u;
-    }
-    return (size_t)(MACHINE_TX_BUF - l->tx_len);
+    return link_tx_room(l->tx, sizeof l->tx, &l->tx_len, &l->tx_pos);
 }
 
 void machine_link_put(struct machine_link *l, const char *s, size_t n)
 {
-    size_t i;
-    for (i = 0; i < n && l->tx_len < MACHINE_TX_BUF; i++) {
-        l->tx[l->tx_len++] = (uint8_t)s[i];
-    }
+    link_tx_put(l->tx, sizeof l->tx, &l->tx_len, s, n);
 }
 
 int machine_link_line(struct machine_link *l)

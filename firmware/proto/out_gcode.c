@@ -46,8 +46,9 @@ static void put_field(char *out, size_t cap, size_t *pos, const char *key, uint3
 }
 
 /* The feed of point k of a run that starts at start_k: the plunge's for the first, the
- * link feed on a link point, else the cut's. */
-static cp_real feed_of(const struct job *job, const struct path *path, uint32_t start_k,
+ * link feed on a link point, else the cut's. (Not inlined: put_point asks for k and for
+ * k - 1, and LTO had written it out twice there.) */
+static CP_NOINLINE cp_real feed_of(const struct job *job, const struct path *path, uint32_t start_k,
                        uint32_t k)
 {
     struct raster_at at;

@@ -63,15 +63,7 @@ int proto_init(struct proto *p, const struct proto_cfg *cfg)
  *-------------------------------------------------------------------------*/
 static size_t tx_room(struct proto *p)
 {
-    if (p->tx_pos > 0u) { /* compact the unsent tail to the front */
-        uint16_t i, k = (uint16_t)(p->tx_len - p->tx_pos);
-        for (i = 0; i < k; i++) {
-            p->tx[i] = p->tx[p->tx_pos + i];
-        }
-        p->tx_len = k;
-        p->tx_pos = 0;
-    }
-    return (size_t)(CP_TX_BUF - p->tx_len);
+    return link_tx_room(p->tx, sizeof p->tx, &p->tx_len, &p->tx_pos);
 }
 
 static void tx_str(struct proto *p, const char *s)
@@ -118,10 +110,7 @@ static CP_NOINLINE void reply_status(struct proto *p, int code)
 /* Append s[0..n) to the tx buffer (at most the room left). */
 static void tx_mem(struct proto *p, const char *s, size_t n)
 {
-    size_t i;
-    for (i = 0; i < n && p->tx_len < CP_TX_BUF; i++) {
-        p->tx[p->tx_len++] = (uint8_t)s[i];
-    }
+    link_tx_put(p->tx, sizeof p->tx, &p->tx_len, s, n);
 }
 
 /* The reply to a command line: reply_status, and for an error whose cause job_line named
@@ -799,19 +788,12 @@ int proto_poll(struct proto *p)
         return p->err;
     }
     /* 1. flush (non-blocking, partial writes are normal) */
-    if (p->tx_pos < p->tx_len) {
-        n = hal_uart_write(p->uart, p->tx + p->tx_pos, (size_t)(p->tx_len - p->tx_pos));
-        if (n < 0) {
-            p->err = CP_ERR_IO;
-            return p->err;
-        }
-        p->tx_pos = (uint16_t)(p->tx_pos + (uint16_t)n);
-        moved |= (n > 0);
-        if (p->tx_pos == p->tx_len) {
-            p->tx_pos = 0;
-            p->tx_len = 0;
-        }
+    n = link_tx_flush(p->uart, p->tx, &p->tx_len, &p->tx_pos);
+    if (n < 0) {
+        p->err = CP_ERR_IO;
+        return p->err;
     }
+    moved |= n;
     n = machine_link_flush(&p->mach);
     if (n < 0) {
         machine_gone(p);
