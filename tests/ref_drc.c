@@ -734,7 +734,8 @@ static void ref_kinks(const ref_real (*P)[3], int n, ref_real (*T)[3])
             for (k = 0; k < 3; k++) {
                 u[k] -= p * t0[k];
             }
-            if (!(vlen(u) > 0.0) || !ref_kink(P[j - 1], T[j - 1], P[j], T[j], P[j + 1], T[j + 1], &k0)) {
+            if (!(vlen(u) > 0.0) ||
+                !ref_kink(P[j - 1], T[j - 1], P[j], T[j], P[j + 1], T[j + 1], &k0)) {
                 continue;
             }
             vunit(u);

@@ -145,7 +145,8 @@ static int lib_run(const double (*P)[3], int n, int K, uint32_t *m)
 
 /* 1. the library against the independent reference, K = 0..4 (double: 1e-9 D). A pass
  * keeps every earlier point, so the K = 4 output holds K = 0..3 at strides 16..2: one
- * run per set covers all five K. The M4F runs two sets (the reference is soft double). */
+ * run per set covers all five K. The M4F runs the planar spiral_nonuniform only (the
+ * reference is soft double; its 3D Frenet fits, issue 21, would take minutes there). */
 int test_drc_ref_match(void)
 {
     int id;
@@ -154,8 +155,8 @@ int test_drc_ref_match(void)
         int n = make_set(id, setp), nr = 0;
         double D = set_size((const double(*)[3])setp, n), e = 0.0, et = 0.0;
         uint32_t m = 0, i;
-        if (!DRC_HEAVY && id != SET_SPIRAL_N && id != SET_HELIX_FINE) {
-            continue;
+        if (!DRC_HEAVY && id != SET_SPIRAL_N) {
+            continue; /* (the M4F: the 3D reference's Frenet fits in soft double take minutes) */
         }
         CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, 4, &m), CP_OK);
         CHECK_EQ_INT(ref_drc_run((const double(*)[3])setp, n, 4, refp, reft, &nr), 0);
@@ -512,8 +513,8 @@ int test_drc_comparison(void)
 }
 
 /* Acceptance 4: 3D helix_fine: curvature regularity in the interior (the exact helix
- * curvature r/(r^2 + c^2) = 0.917431), and the torsion ripple per K (A.6: an open
- * problem, stated, not required). */
+ * curvature r/(r^2 + c^2) = 0.917431), and the torsion ripple per K (A.6's open problem:
+ * issue 21's intrinsic arc keeps it at ~1e-4, test_drc_torsion checks it). */
 int test_drc_helix(void)
 {
     int n = make_set(SET_HELIX_FINE, setp), K;
@@ -588,7 +589,7 @@ int test_drc_torsion(void)
 {
     static struct cp_vec3 v[LIB_CAP];
     int sets[2] = {SET_HELIX_FINE, SET_CONE_3D}, s, K;
-    for (s = 0; s < 2; s++) {
+    for (s = 0; s < (DRC_HEAVY ? 2 : 1); s++) {
         int id = sets[s], n = make_set(id, setp);
         double terr[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, floor_t = 0.0;
         double tsame[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -653,7 +654,8 @@ int test_drc_torsion(void)
                         q[j].y = (cp_real)(a * sin(tt));
                         q[j].z = (cp_real)(0.3 * tt);
                     }
-                    floor_t = fmax(floor_t, fabs((double)drc_tau4(&q[0], &q[1], &q[2], &q[3]) - td) / te);
+                    floor_t = fmax(floor_t,
+                                   fabs((double)drc_tau4(&q[0], &q[1], &q[2], &q[3]) - td) / te);
                 }
             }
             for (i = 0; i < m; i++) {

@@ -9,7 +9,8 @@
  * Layout for flash (drc.h, "Footprint"): the planar core (validation, tangent
  * assignment, planar insertion) and the iterator come first and are all the stream
  * references; the 3D extension (adjoining-plane normals, twist, A3 tilt, the twisted
- * complex model) and the A.4 measures follow, reached only from the library entry
+ * complex model as the guess of the intrinsic arc, the osculating-plane solve) and the A.4
+ * measures follow, reached only from the library entry
  * points (drc_tangents, drc_insert, drc_thicken, drc_run, drc_measure), so
  * --gc-sections drops them from the firmware image.
  */
@@ -727,7 +728,8 @@ static void frn_walk(struct frm *f, const cp_real *x, uint32_t steps)
     }
 }
 
-/* The start frame of the model: P = 0 (positions relative to A), T = T_A, N = cos psi r1 + sin psi (T_A x r1). */
+/* The start frame of the model: P = 0 (positions relative to A), T = T_A,
+ * N = cos psi r1 + sin psi (T_A x r1). */
 static void frn_start(const struct drc_pt *a, const struct cp_vec3 *r1, cp_real psi,
                       struct frm *f)
 {
