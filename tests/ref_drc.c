@@ -43,6 +43,26 @@ typedef double complex ref_cx;
 #define REF_T_BISECT 60
 #endif
 
+/* The intrinsic 3D model (issue 21, docs/DRC-TORSION.md): an arc of 16 helical pieces, the
+ * curvature of piece j frozen at (ka/len) e^{q (j + 1/2)/16}, torsion tb/len. This reference
+ * integrates the Frenet equations of each piece by classical RK4 (REF_RK steps per piece; the
+ * firmware rotates the frame exactly), fits (psi, len, ka, q, tb) to B and T_B by
+ * Gauss-Newton on all six residuals (normal equations, central differences; the firmware:
+ * Newton on five, forward differences) and solves the osculating-plane kinks at the vertices
+ * with more sweeps and secant steps than the firmware (converged, not copied). */
+#define REF_PIECES 16
+#ifdef __arm__
+#define REF_RK 1
+#define REF_GN 8
+#define REF_KSWEEP 4
+#define REF_KSEC 4
+#else
+#define REF_RK 4
+#define REF_GN 12
+#define REF_KSWEEP 8
+#define REF_KSEC 6
+#endif
+
 /* the zero of an angle, relative (drc.h DRC_ANGLE_ZERO, 2^-20) */
 #define REF_DRC_ANGLE_ZERO 9.5367431640625e-7
 
@@ -197,6 +217,8 @@ static void vrot(const ref_real *v, const ref_real *n, ref_real t, ref_real *o)
     o[1] = R_(cos)(t) * v[1] + R_(sin)(t) * w[1];
     o[2] = R_(cos)(t) * v[2] + R_(sin)(t) * w[2];
 }
+
+static void ref_kinks(const ref_real (*P)[3], int n, ref_real (*T)[3]);
 
 int ref_drc_tangents(const ref_real (*P)[3], int n, ref_real (*T)[3])
 {
@@ -364,18 +386,159 @@ int ref_drc_tangents(const ref_real (*P)[3], int n, ref_real (*T)[3])
     }
 #undef A_OF
 #undef B_OF
+    for (i = 0; i < n && P[i][2] == 0.0; i++) {
+    }
+    if (i < n) { /* 3D: the osculating planes meet at every interior vertex (issue 21) */
+        ref_kinks(P, n, T);
+    }
     return REF_DRC_OK;
 }
 
-void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
-                    const ref_real TB[3], ref_real M[3], ref_real TM[3])
+/* ---- the intrinsic 3D model (REF_PIECES helical pieces; docs/DRC-TORSION.md) ---- */
+
+/* From the frame T0, N0 at the origin, integrate the Frenet equations P' = T, T' = k N,
+ * N' = -k T + tau B, B' = -tau N over the first np pieces of the model x = (psi, len, ka,
+ * q, tb) by classical RK4, REF_RK steps per piece. */
+static void ref_walk(const ref_real T0[3], const ref_real N0[3], const ref_real x[5], int np,
+                     ref_real P[3], ref_real T[3], ref_real N[3])
 {
-    ref_real d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al, zero;
+    ref_real y[12], f[4][12], yt[12], h = x[1] / (REF_PIECES * REF_RK), tau = x[4] / x[1];
+    int j, r, s, k;
+    for (k = 0; k < 3; k++) {
+        y[k] = 0.0;
+        y[3 + k] = T0[k];
+        y[6 + k] = N0[k];
+    }
+    vcross(T0, N0, y + 9);
+    for (j = 0; j < np; j++) {
+        ref_real kap = x[2] / x[1] * R_(exp)(x[3] * (j + 0.5) / REF_PIECES);
+        for (r = 0; r < REF_RK; r++) {
+            for (s = 0; s < 4; s++) {
+                ref_real w = s == 0 ? 0.0 : (s == 3 ? h : 0.5 * h);
+                for (k = 0; k < 12; k++) {
+                    yt[k] = y[k] + (s == 0 ? 0.0 : w * f[s - 1][k]);
+                }
+                for (k = 0; k < 3; k++) {
+                    f[s][k] = yt[3 + k];
+                    f[s][3 + k] = kap * yt[6 + k];
+                    f[s][6 + k] = -kap * yt[3 + k] + tau * yt[9 + k];
+                    f[s][9 + k] = -tau * yt[6 + k];
+                }
+            }
+            for (k = 0; k < 12; k++) {
+                y[k] += h / 6.0 * (f[0][k] + 2.0 * f[1][k] + 2.0 * f[2][k] + f[3][k]);
+            }
+        }
+    }
+    for (k = 0; k < 3; k++) {
+        P[k] = y[k];
+        T[k] = y[3 + k];
+        N[k] = y[6 + k];
+    }
+}
+
+/* the start normal N(psi) = cos psi r1 + sin psi (T_A x r1) */
+static void ref_n0(const ref_real TA[3], const ref_real r1[3], ref_real psi, ref_real N0[3])
+{
+    ref_real r2[3];
+    int k;
+    vcross(TA, r1, r2);
+    for (k = 0; k < 3; k++) {
+        N0[k] = R_(cos)(psi) * r1[k] + R_(sin)(psi) * r2[k];
+    }
+}
+
+/* six residuals: (P(1) - (B - A))/c, T(1) - T_B */
+static void ref_res(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                    const ref_real TB[3], const ref_real r1[3], ref_real c, const ref_real x[5],
+                    ref_real r[6])
+{
+    ref_real N0[3], P[3], T[3], N[3];
+    int k;
+    ref_n0(TA, r1, x[0], N0);
+    ref_walk(TA, N0, x, REF_PIECES, P, T, N);
+    for (k = 0; k < 3; k++) {
+        r[k] = (P[k] - (B[k] - A[k])) / c;
+        r[3 + k] = T[k] - TB[k];
+    }
+}
+
+/* Gauss-Newton on the six residuals: REF_GN steps, J by central differences, the normal
+ * equations J^T J dx = J^T r by Gaussian elimination with partial pivoting. */
+static void ref_fit(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                    const ref_real TB[3], const ref_real r1[3], ref_real c, ref_real x[5])
+{
+    int it, i, j, k;
+    for (it = 0; it < REF_GN; it++) {
+        ref_real J[6][5], r0[6], rp[6], rm[6], xs[5], M[5][6];
+        ref_res(A, TA, B, TB, r1, c, x, r0);
+        for (j = 0; j < 5; j++) {
+            ref_real h = 1e-6 * (j == 1 ? c : 1.0);
+            memcpy(xs, x, sizeof xs);
+            xs[j] = x[j] + h;
+            ref_res(A, TA, B, TB, r1, c, xs, rp);
+            xs[j] = x[j] - h;
+            ref_res(A, TA, B, TB, r1, c, xs, rm);
+            for (i = 0; i < 6; i++) {
+                J[i][j] = (rp[i] - rm[i]) / (2.0 * h);
+            }
+        }
+        for (i = 0; i < 5; i++) {
+            for (j = 0; j < 5; j++) {
+                M[i][j] = 0.0;
+                for (k = 0; k < 6; k++) {
+                    M[i][j] += J[k][i] * J[k][j];
+                }
+            }
+            M[i][5] = 0.0;
+            for (k = 0; k < 6; k++) {
+                M[i][5] += J[k][i] * r0[k];
+            }
+        }
+        for (k = 0; k < 5; k++) {
+            int pv = k;
+            for (i = k + 1; i < 5; i++) {
+                pv = R_(fabs)(M[i][k]) > R_(fabs)(M[pv][k]) ? i : pv;
+            }
+            if (!(R_(fabs)(M[pv][k]) > 1e-300)) {
+                return;
+            }
+            for (j = 0; j < 6; j++) {
+                ref_real t = M[k][j];
+                M[k][j] = M[pv][j];
+                M[pv][j] = t;
+            }
+            for (i = k + 1; i < 5; i++) {
+                ref_real f = M[i][k] / M[k][k];
+                for (j = k; j < 6; j++) {
+                    M[i][j] -= f * M[k][j];
+                }
+            }
+        }
+        for (k = 4; k >= 0; k--) {
+            for (j = k + 1; j < 5; j++) {
+                M[k][5] -= M[k][j] * M[j][5];
+            }
+            M[k][5] /= M[k][k];
+            x[k] -= M[k][5];
+        }
+    }
+}
+
+/* The segment's deviation vectors and, when A.2 takes the twisted model (both end angles
+ * non-zero, Re rho > 0), its z and C by damped Newton: the initial guess x = (0, c, |C|,
+ * Re z, Im z) of the intrinsic model and r1 = unit(C) perpendicular to T_A. Returns 1 then. */
+static int ref_twist(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                     const ref_real TB[3], ref_real d[3], ref_real *cl, ref_real gA[3],
+                     ref_real gB[3], ref_real x[5], ref_real r1[3])
+{
+    ref_real e1[3], e2[3], c, zero;
     const ref_real *T2[2];
     ref_real *g2[2];
     int k, s;
     vdiff(B, A, d);
     c = vlen(d);
+    *cl = c;
     vunit(d);
     /* MATH-seeds A.2: "one end angle zero -> linear model". The exact 0 is decided with the
      * firmware's documented tolerance (drc.h DRC_ANGLE_ZERO: 2^-20 (1 + (|A| + |B|)/c), twice
@@ -410,7 +573,7 @@ void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[
             rho = -GB / GA;
         }
         if (a > 0.0 && b > 0.0 && C_(real)(rho) > 0.0) {
-            ref_cx z = mkc(rinv_ref(C_(abs)(rho)), 3.0 * C_(arg)(rho)), C, d1, gm;
+            ref_cx z = mkc(rinv_ref(C_(abs)(rho)), 3.0 * C_(arg)(rho)), C;
             int it;
             for (it = 0; it < 30; it++) {
                 ref_cx h = 1e-7 * (1.0 + C_(abs)(z)), f, fp, st;
@@ -436,17 +599,52 @@ void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[
                 }
             }
             C = -GA / E2c(z);
-            d1 = GA + (C / 2.0) * E2c(z / 2.0);
-            gm = GA + (C / 2.0) * E1c(z / 2.0);
             for (k = 0; k < 3; k++) {
-                D1[k] = C_(real)(d1) * e1[k] + C_(imag)(d1) * e2[k];
-                GM[k] = C_(real)(gm) * e1[k] + C_(imag)(gm) * e2[k];
+                r1[k] = C_(real)(C) * e1[k] + C_(imag)(C) * e2[k];
             }
-        } else {
-            for (k = 0; k < 3; k++) {
-                D1[k] = (gA[k] - gB[k]) / 4.0;
-                GM[k] = -(gA[k] + gB[k]) / 4.0;
+            {
+                ref_real p = vdot(r1, TA);
+                for (k = 0; k < 3; k++) {
+                    r1[k] -= p * TA[k];
+                }
+                vunit(r1);
             }
+            x[0] = 0.0;
+            x[1] = c;
+            x[2] = C_(abs)(C);
+            x[3] = C_(real)(z);
+            x[4] = C_(imag)(z);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The planar insertion of A.2 (real z; also the 3D data's linear model): the deviation D1
+ * of chord AM and G_M of the tangent at M, the isosceles apex. */
+static void ref_insert_planar(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                              const ref_real TB[3], ref_real M[3], ref_real TM[3])
+{
+    ref_real d[3], gA[3], gB[3], e1[3], e2[3], D1[3], GM[3], c, al, x[5], r1[3];
+    int k;
+    if (ref_twist(A, TA, B, TB, d, &c, gA, gB, x, r1)) {
+        ref_real a = vlen(gA);
+        ref_cx GA = a, z = mkc(x[3], x[4]), C, d1, gm;
+        for (k = 0; k < 3; k++) {
+            e1[k] = gA[k] / a;
+        }
+        vcross(d, e1, e2);
+        C = -GA / E2c(z);
+        d1 = GA + (C / 2.0) * E2c(z / 2.0);
+        gm = GA + (C / 2.0) * E1c(z / 2.0);
+        for (k = 0; k < 3; k++) {
+            D1[k] = C_(real)(d1) * e1[k] + C_(imag)(d1) * e2[k];
+            GM[k] = C_(real)(gm) * e1[k] + C_(imag)(gm) * e2[k];
+        }
+    } else {
+        for (k = 0; k < 3; k++) {
+            D1[k] = (gA[k] - gB[k]) / 4.0;
+            GM[k] = -(gA[k] + gB[k]) / 4.0;
         }
     }
     al = vlen(D1);
@@ -461,12 +659,113 @@ void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[
     }
 }
 
+/* 3D insertion (issue 21): the intrinsic model fitted to the segment, M at its half arc;
+ * where A.2 takes the linear model, that model (ref_insert_planar's else branch). */
+static void ref_insert_3d(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                          const ref_real TB[3], ref_real M[3], ref_real TM[3])
+{
+    ref_real d[3], gA[3], gB[3], c, x[5], r1[3], N0[3], P[3], N[3];
+    int k;
+    if (!ref_twist(A, TA, B, TB, d, &c, gA, gB, x, r1)) {
+        ref_insert_planar(A, TA, B, TB, M, TM);
+        return;
+    }
+    ref_fit(A, TA, B, TB, r1, c, x);
+    ref_n0(TA, r1, x[0], N0);
+    ref_walk(TA, N0, x, REF_PIECES / 2, P, TM, N);
+    for (k = 0; k < 3; k++) {
+        M[k] = A[k] + P[k];
+    }
+}
+
+/* Step 2 on one segment: the planar model when the segment lies in z = 0 (points and
+ * tangents), else the 3D one (ref_drc_run decides for the whole curve, as the firmware). */
+void ref_drc_insert(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                    const ref_real TB[3], ref_real M[3], ref_real TM[3])
+{
+    if (A[2] == 0.0 && B[2] == 0.0 && TA[2] == 0.0 && TB[2] == 0.0) {
+        ref_insert_planar(A, TA, B, TB, M, TM);
+    } else {
+        ref_insert_3d(A, TA, B, TB, M, TM);
+    }
+}
+
+/* Kink of the osculating plane at B between the intrinsic arcs A-B and B-C (signed about
+ * T_B); 0 and returns 0 when either takes the linear model. */
+static int ref_kink(const ref_real A[3], const ref_real TA[3], const ref_real B[3],
+                    const ref_real TB[3], const ref_real C3[3], const ref_real TC[3],
+                    ref_real *kk)
+{
+    ref_real d[3], gA[3], gB[3], c, x[5], r1[3], N0[3], P[3], T[3], N[3], bl[3], br[3], w[3];
+    *kk = 0.0;
+    if (!ref_twist(A, TA, B, TB, d, &c, gA, gB, x, r1)) {
+        return 0;
+    }
+    ref_fit(A, TA, B, TB, r1, c, x);
+    ref_n0(TA, r1, x[0], N0);
+    ref_walk(TA, N0, x, REF_PIECES, P, T, N);
+    vcross(T, N, bl);
+    vunit(bl);
+    if (!ref_twist(B, TB, C3, TC, d, &c, gA, gB, x, r1)) {
+        return 0;
+    }
+    ref_fit(B, TB, C3, TC, r1, c, x);
+    ref_n0(TB, r1, x[0], N0);
+    vcross(TB, N0, br);
+    vcross(bl, br, w);
+    *kk = R_(atan2)(vdot(w, TB), vdot(bl, br));
+    return 1;
+}
+
+/* Step 1, 3D: tilt each interior tangent about its adjoining plane's in-plane normal until
+ * the osculating planes of the two intrinsic arcs meet without a kink (REF_KSWEEP
+ * Gauss-Seidel sweeps, REF_KSEC secant steps from tilts 0 and 1e-6). */
+static void ref_kinks(const ref_real (*P)[3], int n, ref_real (*T)[3])
+{
+    int s, j, i, k;
+    for (s = 0; s < REF_KSWEEP; s++) {
+        for (j = 1; j + 1 < n; j++) {
+            ref_real t0[3], u[3], d0[3], d1[3], b0 = 0.0, b1 = 1e-6, k0, k1, p;
+            memcpy(t0, T[j], sizeof t0);
+            vdiff(P[j], P[j - 1], d0);
+            vdiff(P[j + 1], P[j], d1);
+            vcross(d0, d1, u);
+            p = vdot(u, t0);
+            for (k = 0; k < 3; k++) {
+                u[k] -= p * t0[k];
+            }
+            if (!(vlen(u) > 0.0) ||
+                !ref_kink(P[j - 1], T[j - 1], P[j], T[j], P[j + 1], T[j + 1], &k0)) {
+                continue;
+            }
+            vunit(u);
+            for (i = 0; i < REF_KSEC; i++) {
+                ref_real b2;
+                for (k = 0; k < 3; k++) {
+                    T[j][k] = R_(cos)(b1) * t0[k] + R_(sin)(b1) * u[k];
+                }
+                (void)ref_kink(P[j - 1], T[j - 1], P[j], T[j], P[j + 1], T[j + 1], &k1);
+                if (!(R_(fabs)(k1 - k0) > 0.0)) {
+                    break;
+                }
+                b2 = b1 - k1 * (b1 - b0) / (k1 - k0);
+                b0 = b1;
+                k0 = k1;
+                b1 = b2;
+            }
+            for (k = 0; k < 3; k++) {
+                T[j][k] = R_(cos)(b1) * t0[k] + R_(sin)(b1) * u[k];
+            }
+        }
+    }
+}
+
 int ref_drc_run(const ref_real (*P)[3], int n, int K, ref_real (*out)[3], ref_real (*Tout)[3],
                 int *nout)
 {
     static ref_real Pa[REF_DRC_MAXOUT][3], Ta[REF_DRC_MAXOUT][3];
     static ref_real Pb[REF_DRC_MAXOUT][3], Tb[REF_DRC_MAXOUT][3];
-    int m = n, pass, i, err;
+    int m = n, pass, i, err, planar = 1;
     *nout = 0;
     if (n > REF_DRC_MAXN) {
         return REF_DRC_TOO_MANY;
@@ -479,11 +778,20 @@ int ref_drc_run(const ref_real (*P)[3], int n, int K, ref_real (*out)[3], ref_re
         return err;
     }
     memcpy(Pa, P, (size_t)n * sizeof Pa[0]);
+    for (i = 0; i < n; i++) { /* the planar model when every point and tangent has z = 0 */
+        planar = planar && Pa[i][2] == 0.0 && Ta[i][2] == 0.0;
+    }
     for (pass = 0; pass < K; pass++) {
         for (i = 0; i + 1 < m; i++) {
             memcpy(Pb[2 * i], Pa[i], sizeof Pa[0]);
             memcpy(Tb[2 * i], Ta[i], sizeof Ta[0]);
-            ref_drc_insert(Pa[i], Ta[i], Pa[i + 1], Ta[i + 1], Pb[2 * i + 1], Tb[2 * i + 1]);
+            if (planar) {
+                ref_insert_planar(Pa[i], Ta[i], Pa[i + 1], Ta[i + 1], Pb[2 * i + 1],
+                                  Tb[2 * i + 1]);
+            } else {
+                ref_insert_3d(Pa[i], Ta[i], Pa[i + 1], Ta[i + 1], Pb[2 * i + 1],
+                              Tb[2 * i + 1]);
+            }
         }
         memcpy(Pb[2 * m - 2], Pa[m - 1], sizeof Pa[0]);
         memcpy(Tb[2 * m - 2], Ta[m - 1], sizeof Ta[0]);

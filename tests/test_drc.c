@@ -145,7 +145,8 @@ static int lib_run(const double (*P)[3], int n, int K, uint32_t *m)
 
 /* 1. the library against the independent reference, K = 0..4 (double: 1e-9 D). A pass
  * keeps every earlier point, so the K = 4 output holds K = 0..3 at strides 16..2: one
- * run per set covers all five K. The M4F runs two sets (the reference is soft double). */
+ * run per set covers all five K. The M4F runs the planar spiral_nonuniform only (the
+ * reference is soft double; its 3D Frenet fits, issue 21, would take minutes there). */
 int test_drc_ref_match(void)
 {
     int id;
@@ -154,8 +155,8 @@ int test_drc_ref_match(void)
         int n = make_set(id, setp), nr = 0;
         double D = set_size((const double(*)[3])setp, n), e = 0.0, et = 0.0;
         uint32_t m = 0, i;
-        if (!DRC_HEAVY && id != SET_SPIRAL_N && id != SET_HELIX_FINE) {
-            continue;
+        if (!DRC_HEAVY && id != SET_SPIRAL_N) {
+            continue; /* (the M4F: the 3D reference's Frenet fits in soft double take minutes) */
         }
         CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, 4, &m), CP_OK);
         CHECK_EQ_INT(ref_drc_run((const double(*)[3])setp, n, 4, refp, reft, &nr), 0);
@@ -512,8 +513,8 @@ int test_drc_comparison(void)
 }
 
 /* Acceptance 4: 3D helix_fine: curvature regularity in the interior (the exact helix
- * curvature r/(r^2 + c^2) = 0.917431), and the torsion ripple per K (A.6: an open
- * problem, stated, not required). */
+ * curvature r/(r^2 + c^2) = 0.917431), and the torsion ripple per K (A.6's open problem:
+ * issue 21's intrinsic arc keeps it at ~1e-4, test_drc_torsion checks it). */
 int test_drc_helix(void)
 {
     int n = make_set(SET_HELIX_FINE, setp), K;
@@ -543,6 +544,150 @@ int test_drc_helix(void)
 #else
         if (K <= 3) {
             CHECK((kmax - kmin) / kex <= 2e-2);
+        }
+#endif
+    }
+    return 0;
+}
+
+/* Exact curvature and torsion of the 3D sets at the parameter t (z = 0.3 t on both):
+ * helix r = 1, c = 0.3; conical spiral radius a = 1 + 0.15 t. */
+static void set3d_kt(int id, double t, double *k, double *tau)
+{
+    double a = id == SET_HELIX_FINE ? 1.0 : 1.0 + 0.15 * t, da = id == SET_HELIX_FINE ? 0.0 : 0.15;
+    double d1[3], d2[3], d3[3], c[3], cn, n1;
+    d1[0] = da * cos(t) - a * sin(t);
+    d1[1] = da * sin(t) + a * cos(t);
+    d1[2] = 0.3;
+    d2[0] = -2.0 * da * sin(t) - a * cos(t);
+    d2[1] = 2.0 * da * cos(t) - a * sin(t);
+    d2[2] = 0.0;
+    d3[0] = -3.0 * da * cos(t) + a * sin(t);
+    d3[1] = -3.0 * da * sin(t) - a * cos(t);
+    d3[2] = 0.0;
+    c[0] = d1[1] * d2[2] - d1[2] * d2[1];
+    c[1] = d1[2] * d2[0] - d1[0] * d2[2];
+    c[2] = d1[0] * d2[1] - d1[1] * d2[0];
+    cn = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    n1 = sqrt(d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]);
+    *k = cn / (n1 * n1 * n1);
+    *tau = (c[0] * d3[0] + c[1] * d3[1] + c[2] * d3[2]) / (cn * cn);
+}
+
+/* Issue 21 (docs/DRC-TORSION.md): the interior torsion of the 3D sets no longer grows with
+ * the passes. Interior = without the first and last 2 original segments (as test_drc_helix);
+ * errors relative to the exact curve's curvature at the point and torsion at the chord's
+ * middle (z = 0.3 t). Double build: helix_fine at K = 5 within 1e-3 relative (the old
+ * twisted model: 1.4e-1; now 2.6e-4, the AP-dihedral measure's own O(h^2) bias included),
+ * curvature within 4e-6 (old 3.2e-6, now 1.9e-6), no new extrema (3 and 2 between-neighbour
+ * at the end segments, as before; conical 0 / 0); the conical spiral's error converges (its
+ * torsion is one constant per original segment: the K = 4 -> 5 change is at most half the
+ * K = 2 -> 3 change; old: growing, 0.13 -> 0.43). The float build's torsion at K = 5 is
+ * below float resolution: the exact helix's points rounded to float already spread its
+ * discrete torsion by the floor printed here; float checks curvature and extrema only. */
+int test_drc_torsion(void)
+{
+    static struct cp_vec3 v[LIB_CAP];
+    int sets[2] = {SET_HELIX_FINE, SET_CONE_3D}, s, K;
+    for (s = 0; s < (DRC_HEAVY ? 2 : 1); s++) {
+        int id = sets[s], n = make_set(id, setp);
+        double terr[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, floor_t = 0.0;
+        double tsame[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        for (K = 1; K <= (DRC_HEAVY ? 5 : 3); K++) {
+            uint32_t m = 0, i, st = (uint32_t)1u << K, lo, hi;
+            double kerr = 0.0, ke, te, kd, td = 0.0;
+            struct drc_measures dm;
+            CHECK_EQ_INT(lib_run((const double(*)[3])setp, n, K, &m), CP_OK);
+            lo = 2u * st;
+            hi = m - 1u - 2u * st;
+            for (i = lo; i <= hi; i++) {
+                double k = (double)drc_kappa3(&lib[i - 1u].p, &lib[i].p, &lib[i + 1u].p, 0);
+                double t = (double)drc_tau4(&lib[i - 1u].p, &lib[i].p, &lib[i + 1u].p,
+                                            &lib[i + 2u].p);
+                set3d_kt(id, (double)lib[i].p.z / 0.3, &ke, &kd);
+                set3d_kt(id, 0.5 * ((double)lib[i].p.z + (double)lib[i + 1u].p.z) / 0.3, &kd,
+                         &te);
+                kerr = fmax(kerr, fabs(k / ke - 1.0));
+                terr[K] = fmax(terr[K], fabs(t / te - 1.0));
+                {
+                    /* the exact curve at the same parameters t = z / 0.3, in double: the
+                     * AP-dihedral measure depends on the spacing (its bias for unequal chords
+                     * is O(1) in the ratio), so the scheme's torsion is also compared with the
+                     * exact curve's discrete torsion at the points' own spacing */
+                    double q[4][3], n1[3], n2[3], x[3], dd[3], l1, l2, ld;
+                    uint32_t j;
+                    int c;
+                    for (j = 0; j < 4u; j++) {
+                        double tt = (double)lib[i - 1u + j].p.z / 0.3;
+                        double a = id == SET_HELIX_FINE ? 1.0 : 1.0 + 0.15 * tt;
+                        q[j][0] = a * cos(tt);
+                        q[j][1] = a * sin(tt);
+                        q[j][2] = 0.3 * tt;
+                    }
+                    for (c = 0; c < 3; c++) {
+                        dd[c] = q[2][c] - q[1][c];
+                    }
+                    n1[0] = (q[1][1] - q[0][1]) * dd[2] - (q[1][2] - q[0][2]) * dd[1];
+                    n1[1] = (q[1][2] - q[0][2]) * dd[0] - (q[1][0] - q[0][0]) * dd[2];
+                    n1[2] = (q[1][0] - q[0][0]) * dd[1] - (q[1][1] - q[0][1]) * dd[0];
+                    n2[0] = dd[1] * (q[3][2] - q[2][2]) - dd[2] * (q[3][1] - q[2][1]);
+                    n2[1] = dd[2] * (q[3][0] - q[2][0]) - dd[0] * (q[3][2] - q[2][2]);
+                    n2[2] = dd[0] * (q[3][1] - q[2][1]) - dd[1] * (q[3][0] - q[2][0]);
+                    l1 = sqrt(n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]);
+                    l2 = sqrt(n2[0] * n2[0] + n2[1] * n2[1] + n2[2] * n2[2]);
+                    ld = sqrt(dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
+                    x[0] = n1[1] * n2[2] - n1[2] * n2[1];
+                    x[1] = n1[2] * n2[0] - n1[0] * n2[2];
+                    x[2] = n1[0] * n2[1] - n1[1] * n2[0];
+                    td = atan2((x[0] * dd[0] + x[1] * dd[1] + x[2] * dd[2]) / (l1 * l2 * ld),
+                               (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]) / (l1 * l2)) / ld;
+                    tsame[K] = fmax(tsame[K], fabs(t - td) / te);
+                }
+                if (K == (DRC_HEAVY ? 5 : 3)) {
+                    /* the float floor: the exact curve at the same points, stored in cp_real */
+                    struct cp_vec3 q[4];
+                    uint32_t j;
+                    for (j = 0; j < 4u; j++) {
+                        double tt = (double)lib[i - 1u + j].p.z / 0.3;
+                        double a = id == SET_HELIX_FINE ? 1.0 : 1.0 + 0.15 * tt;
+                        q[j].x = (cp_real)(a * cos(tt));
+                        q[j].y = (cp_real)(a * sin(tt));
+                        q[j].z = (cp_real)(0.3 * tt);
+                    }
+                    floor_t = fmax(floor_t,
+                                   fabs((double)drc_tau4(&q[0], &q[1], &q[2], &q[3]) - td) / te);
+                }
+            }
+            for (i = 0; i < m; i++) {
+                v[i] = lib[i].p;
+            }
+            CHECK_EQ_INT(drc_measure(v, m, 0, &dm), CP_OK);
+            TEST_NOTE("drc torsion %-18s K=%d interior |k/k_ex - 1| <= %.2e, |tau/tau_ex - 1| <= "
+                      "%.2e, vs the exact curve's discrete torsion at the same spacing %.2e, "
+                      "extrema %u, between %u (%s)\n",
+                      set_name[id], K, kerr, terr[K], tsame[K], (unsigned)dm.extrema,
+                      (unsigned)dm.between, CP_REAL_NAME);
+            if (id == SET_HELIX_FINE) {
+#if CP_REAL_DOUBLE
+                CHECK(kerr <= 4e-6 || K < 5);
+                CHECK(dm.extrema <= 3u && dm.between <= 2u);
+#else
+                CHECK(kerr <= 1e-3);
+#endif
+            } else {
+                CHECK(kerr <= 1e-3);
+                CHECK(dm.extrema == 0u && dm.between == 0u);
+            }
+        }
+        TEST_NOTE("drc torsion %-18s float floor of the measure at K=%d: the exact curve's points "
+                  "in cp_real give |tau/tau_ex - 1| <= %.2e (%s)\n",
+                  set_name[id], DRC_HEAVY ? 5 : 3, floor_t, CP_REAL_NAME);
+#if CP_REAL_DOUBLE
+        if (id == SET_HELIX_FINE) {
+            CHECK(terr[DRC_HEAVY ? 5 : 3] <= 1e-3);
+        } else if (DRC_HEAVY) {
+            CHECK(terr[5] <= 6e-2);
+            CHECK(fabs(terr[5] - terr[4]) <= 0.5 * fabs(terr[3] - terr[2]));
         }
 #endif
     }

@@ -9,7 +9,8 @@
  * Layout for flash (drc.h, "Footprint"): the planar core (validation, tangent
  * assignment, planar insertion) and the iterator come first and are all the stream
  * references; the 3D extension (adjoining-plane normals, twist, A3 tilt, the twisted
- * complex model) and the A.4 measures follow, reached only from the library entry
+ * complex model as the guess of the intrinsic arc, the osculating-plane solve) and the A.4
+ * measures follow, reached only from the library entry
  * points (drc_tangents, drc_insert, drc_thicken, drc_run, drc_measure), so
  * --gc-sections drops them from the firmware image.
  */
@@ -541,6 +542,9 @@ static CP_NOINLINE void orient_3d(const struct cp_vec3 *p, unsigned ps, struct c
     }
 }
 
+static void kink_3d(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsigned ts,
+                    uint32_t n);
+
 int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsigned ts,
                  uint32_t n)
 {
@@ -561,6 +565,7 @@ int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t, unsign
     }
     solve(p, ps, n, &w);
     orient_3d(p, ps, t, ts, n, &w);
+    kink_3d(p, ps, t, ts, n);
     return CP_OK;
 }
 
@@ -643,94 +648,293 @@ static void ce12(struct cx z, struct cx e[4])
     }
 }
 
-/* 3D insertion: deviation vectors g = angle(T, d) unit(T - (T.d) d); complex in the
- * basis e1 = unit(g_A), e2 = d x e1. Twisted model g(u) = G_A + C (e^{zu} - 1)/z when
- * rho = -G_B/G_A has Re > 0: r(z) = rho by DRC_NEWTON damped Newton steps (step length
- * clipped to 1, Re z clamped to +-DRC_Q_MAX) from z0 = r^-1(|rho|) + 3i arg(rho).
- * Error: Newton converges quadratically from z0 (the small-angle model is smooth in
- * z); 30 steps leave |r(z) - rho| at rounding level on the test sets. */
+/* ---- the intrinsic 3D segment model (issue 21, docs/DRC-TORSION.md) ----
+ * An arc of length len with curvature k(u) = (ka/len) e^{q u} and constant torsion tb/len,
+ * u = s/len in [0, 1], started at A with the tangent T_A and the principal normal
+ * N(psi) = cos psi r1 + sin psi (T_A x r1). The unknowns x = (psi, len, ka, q, tb) are fitted
+ * to B and T_B (5 equations) by DRC_FIT_NEWTON Newton steps. The family is closed under
+ * restriction to a sub-arc (k stays exponential, tau constant), so the fit of a child
+ * segment's end data returns the child half of its parent's arc: the limit curve of the
+ * passes on every original segment IS the fitted arc, and the osculating plane cannot kink
+ * at an inserted point (the linearised twisted model could: a kink is a Dirac in torsion,
+ * whose discrete value doubles with every pass; docs/DRC-TORSION.md). */
+#if CP_REAL_DOUBLE
+#define DRC_FIT_NEWTON 8           /* Newton steps of the 5-unknown fit */
+#define DRC_FD CP_R(1.0e-7)         /* forward-difference step of the Jacobian */
+#else
+#define DRC_FIT_NEWTON 6
+#define DRC_FD CP_R(2.0e-3)
+#endif
+#define DRC_FRENET_STEPS 16u      /* exact helical sub-steps per arc (even: M at the half) */
+#define DRC_KINK_SWEEPS 8u        /* step 1: Gauss-Seidel sweeps of the osculating-plane fit */
+#define DRC_KINK_SECANT 4u        /* secant steps per vertex and sweep */
+
+struct frm {
+    struct cp_vec3 p, t, n; /* position, unit tangent, principal normal (b = t x n) */
+};
+
+/* Rotate v about the unit axis w by the angle with sine sn and 1 - cosine oc (Rodrigues;
+ * oc = 2 sin^2(half angle), no cancellation). */
+static void rot_axis(struct cp_vec3 *v, const struct cp_vec3 *w, cp_real sn, cp_real oc)
+{
+    struct cp_vec3 x;
+    cp_real wd = cp_v3_dot(w, v);
+    cp_v3_cross(w, v, &x);
+    cp_v3_comb(v, ONE - oc, v, sn, &x);
+    cp_v3_comb(v, ONE, v, oc * wd, w);
+}
+
+/* Walk the model x from the frame f (in place) over `steps` of the DRC_FRENET_STEPS
+ * sub-steps. Each sub-step freezes the curvature at its midpoint and moves exactly along
+ * the helix of that curvature and the torsion (a rotation of the frame about the Darboux
+ * vector w = tau T + k B by |w| h, position = the integral of the rotating tangent): exact
+ * for helices (q = 0); otherwise second order in the sub-step, error
+ * <= ka (q / DRC_FRENET_STEPS)^2 / 24 rad (docs/DRC-TORSION.md). */
+static void frn_walk(struct frm *f, const cp_real *x, uint32_t steps)
+{
+    cp_real h = x[1] / (cp_real)DRC_FRENET_STEPS, tau = x[4] / x[1];
+    cp_real k = x[2] / x[1] * cp_exp(x[3] * HALF / (cp_real)DRC_FRENET_STEPS);
+    cp_real g = cp_exp(x[3] / (cp_real)DRC_FRENET_STEPS);
+    uint32_t i;
+    for (i = 0; i < steps; i++) {
+        struct cp_vec3 b, w, x1, tp;
+        cp_real wn, ph, sn, cs, oc, si, ci, td;
+        cp_v3_cross(&f->t, &f->n, &b);
+        cp_v3_comb(&w, tau, &f->t, k, &b);
+        wn = cp_v3_norm(&w);
+        ph = wn * h;
+        cp_sincos(HALF * ph, &sn, &cs); /* half angle: 1 - cos ph = 2 sin^2(ph/2) */
+        oc = TWO * sn * sn;
+        sn = TWO * sn * cs;
+        if (ph > CP_R(1e-3)) {
+            si = sn / ph; /* sin(ph)/ph */
+            ci = oc / ph; /* (1 - cos ph)/ph */
+        } else {          /* (truncation ph^4/120, ph^5/720: below 2^-53 relative) */
+            si = ONE - ph * ph / CP_R(6.0);
+            ci = ph * (HALF - ph * ph / CP_R(24.0));
+        }
+        if (wn > ZERO) {
+            cp_v3_comb(&w, ONE / wn, &w, ZERO, &w);
+        }
+        td = cp_v3_dot(&f->t, &w);
+        cp_v3_comb(&tp, ONE, &f->t, -td, &w); /* T perpendicular to the axis */
+        cp_v3_cross(&w, &f->t, &x1);
+        cp_v3_comb(&b, td * h, &w, si * h, &tp);
+        cp_v3_comb(&b, ONE, &b, ci * h, &x1);
+        cp_v3_comb(&f->p, ONE, &f->p, ONE, &b);
+        rot_axis(&f->t, &w, sn, oc);
+        rot_axis(&f->n, &w, sn, oc);
+        k *= g;
+    }
+}
+
+/* The start frame of the model: P = 0 (positions relative to A), T = T_A,
+ * N = cos psi r1 + sin psi (T_A x r1). */
+static void frn_start(const struct drc_pt *a, const struct cp_vec3 *r1, cp_real psi,
+                      struct frm *f)
+{
+    struct cp_vec3 r2;
+    cp_real sn, cs;
+    cp_v3_cross(&a->t, r1, &r2);
+    cp_sincos(psi, &sn, &cs);
+    f->p.x = ZERO; /* relative to A: rounding scales with the arc, not with |A| */
+    f->p.y = ZERO;
+    f->p.z = ZERO;
+    f->t = a->t;
+    cp_v3_comb(&f->n, cs, r1, sn, &r2);
+}
+
+/* Residual of x: (P(1) - B)/c and (T(1) - T_B) on ea, eb (both perpendicular to T_B). */
+static void frn_res(const struct drc_pt *a, const struct drc_pt *b, const struct cp_vec3 *r1,
+                    const struct cp_vec3 *ea, const struct cp_vec3 *eb, cp_real ic,
+                    const cp_real *x, cp_real *r)
+{
+    struct frm f;
+    struct cp_vec3 dp, dt;
+    frn_start(a, r1, x[0], &f);
+    frn_walk(&f, x, DRC_FRENET_STEPS);
+    cp_v3_sub(&b->p, &a->p, &dp);
+    cp_v3_sub(&f.p, &dp, &dp);
+    cp_v3_sub(&f.t, &b->t, &dt);
+    r[0] = dp.x * ic;
+    r[1] = dp.y * ic;
+    r[2] = dp.z * ic;
+    r[3] = cp_v3_dot(&dt, ea);
+    r[4] = cp_v3_dot(&dt, eb);
+}
+
+/* Fit the model to the segment a -> b from the initial guess x (the twisted model's) and
+ * the reference normal r1 (unit, perpendicular to T_A): DRC_FIT_NEWTON Newton steps, the
+ * Jacobian by forward differences (steps DRC_FD x the unknown's scale), a 5 x 5 Gaussian
+ * elimination with partial pivoting; a step with a pivot below 1e-30 is skipped. */
+static CP_NOINLINE void frn_fit(const struct drc_pt *a, const struct drc_pt *b,
+                                const struct cp_vec3 *r1, cp_real c, cp_real *x)
+{
+    cp_real jac[5][6], r0[5], r[5], xs[5], ic = ONE / c;
+    struct cp_vec3 ea, eb;
+    uint32_t it, i, j, k;
+    cp_v3_comb(&ea, ONE, r1, -cp_v3_dot(r1, &b->t), &b->t);
+    cp_v3_comb(&ea, ONE / cp_v3_norm(&ea), &ea, ZERO, &ea);
+    cp_v3_cross(&b->t, &ea, &eb);
+    for (it = 0; it < DRC_FIT_NEWTON; it++) {
+        int ok = 1;
+        frn_res(a, b, r1, &ea, &eb, ic, x, r0);
+        for (j = 0; j < 5u; j++) {
+            cp_real hj = DRC_FD * (j == 1u ? c : ONE);
+            for (i = 0; i < 5u; i++) {
+                xs[i] = x[i];
+            }
+            xs[j] += hj;
+            frn_res(a, b, r1, &ea, &eb, ic, xs, r);
+            for (i = 0; i < 5u; i++) {
+                jac[i][j] = (r[i] - r0[i]) / hj;
+            }
+        }
+        for (i = 0; i < 5u; i++) {
+            jac[i][5] = r0[i];
+        }
+        for (k = 0; k < 5u; k++) { /* elimination with partial pivoting */
+            uint32_t pv = k;
+            for (i = k + 1u; i < 5u; i++) {
+                pv = cp_fabs(jac[i][k]) > cp_fabs(jac[pv][k]) ? i : pv;
+            }
+            if (!(cp_fabs(jac[pv][k]) > CP_R(1e-30))) {
+                ok = 0;
+                break;
+            }
+            for (j = 0; j < 6u; j++) {
+                cp_real t = jac[k][j];
+                jac[k][j] = jac[pv][j];
+                jac[pv][j] = t;
+            }
+            for (i = k + 1u; i < 5u; i++) {
+                cp_real f = jac[i][k] / jac[k][k];
+                for (j = k; j < 6u; j++) {
+                    jac[i][j] -= f * jac[k][j];
+                }
+            }
+        }
+        if (!ok) {
+            break;
+        }
+        for (k = 5u; k-- > 0u;) { /* back substitution: the step in jac[k][5] */
+            for (j = k + 1u; j < 5u; j++) {
+                jac[k][5] -= jac[k][j] * jac[j][5];
+            }
+            jac[k][5] /= jac[k][k];
+        }
+        for (i = 0; i < 5u; i++) {
+            x[i] -= jac[i][5];
+        }
+    }
+}
+
+/* The twisted small-angle model of A.2 (deviation vectors g = angle(T, d) unit(T - (T.d) d),
+ * complex in e1 = unit(g_A), e2 = d x e1; g(u) = G_A + C (e^{zu} - 1)/z with r(z) = rho =
+ * -G_B/G_A by DRC_NEWTON damped Newton steps, step clipped to 1, Re z clamped to
+ * +-DRC_Q_MAX, from z0 = r^-1(|rho|) + 3i arg(rho)), used as the initial guess of the
+ * intrinsic model when both end angles are non-zero and Re rho > 0: x = (0, c, |C|, Re z,
+ * Im z) and r1 = the direction of C (the curvature at A) perpendicular to T_A. Returns 1
+ * then; else 0 with ga, gb the deviation vectors (the linear model's input). */
+static CP_NOINLINE int twist_guess(const struct drc_pt *a, const struct drc_pt *b,
+                                   struct cp_vec3 *d, cp_real *cl, struct cp_vec3 *ga,
+                                   struct cp_vec3 *gb, cp_real *x, struct cp_vec3 *r1)
+{
+    struct cp_vec3 e1, e2;
+    cp_real c, w, td, ang, zero, na, nb;
+    struct cx gA, gB, rho, z, e[4], r, dr, st, cc;
+    int i;
+    cp_v3_sub(&b->p, &a->p, d);
+    c = cp_v3_norm(d);
+    *cl = c;
+    zero = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
+    cp_v3_comb(d, ONE / c, d, ZERO, d);
+    td = cp_v3_dot(&a->t, d);
+    cp_v3_comb(ga, ONE, &a->t, -td, d);
+    w = cp_v3_norm(ga);
+    ang = cp_atan2(w, td);
+    cp_v3_comb(ga, ang > zero ? ang / w : ZERO, ga, ZERO, ga);
+    td = cp_v3_dot(&b->t, d);
+    cp_v3_comb(gb, ONE, &b->t, -td, d);
+    w = cp_v3_norm(gb);
+    ang = cp_atan2(w, td);
+    cp_v3_comb(gb, ang > zero ? ang / w : ZERO, gb, ZERO, gb);
+    na = cp_v3_norm(ga);
+    nb = cp_v3_norm(gb);
+    if (!(na > ZERO && nb > ZERO)) {
+        return 0;
+    }
+    cp_v3_comb(&e1, ONE / na, ga, ZERO, ga);
+    cp_v3_cross(d, &e1, &e2);
+    gA.re = na;
+    gA.im = ZERO;
+    gB.re = cp_v3_dot(gb, &e1);
+    gB.im = cp_v3_dot(gb, &e2);
+    rho = cdiv(gB, gA);
+    rho.re = -rho.re;
+    rho.im = -rho.im;
+    if (!(rho.re > ZERO)) {
+        return 0;
+    }
+    z.re = rinv(cp_sqrt(rho.re * rho.re + rho.im * rho.im));
+    z.im = CP_R(3.0) * cp_atan2(rho.im, rho.re);
+    for (i = 0; i < DRC_NEWTON; i++) {
+        cp_real sl;
+        ce12(z, e);
+        /* r = E1/E2 - 1, r' = (E1' E2 - E1 E2') / E2^2 */
+        r = cdiv(e[0], e[1]);
+        r.re -= ONE + rho.re;
+        r.im -= rho.im;
+        dr = cmul(e[2], e[1]);
+        st = cmul(e[0], e[3]);
+        dr.re -= st.re;
+        dr.im -= st.im;
+        dr = cdiv(dr, cmul(e[1], e[1]));
+        st = cdiv(r, dr);
+        sl = st.re * st.re + st.im * st.im;
+        if (sl > ONE) {
+            sl = ONE / cp_sqrt(sl);
+            st.re *= sl;
+            st.im *= sl;
+        }
+        z.re -= st.re;
+        z.im -= st.im;
+        z.re = z.re > DRC_Q_MAX ? DRC_Q_MAX : (z.re < -DRC_Q_MAX ? -DRC_Q_MAX : z.re);
+    }
+    ce12(z, e);
+    cc = cdiv(gA, e[1]); /* -C */
+    cp_v3_comb(r1, -cc.re, &e1, -cc.im, &e2);
+    cp_v3_comb(r1, ONE, r1, -cp_v3_dot(r1, &a->t), &a->t);
+    w = cp_v3_norm(r1);
+    cp_v3_comb(r1, ONE / w, r1, ZERO, r1);
+    x[0] = ZERO;
+    x[1] = c;
+    x[2] = cp_sqrt(cc.re * cc.re + cc.im * cc.im);
+    x[3] = z.re;
+    x[4] = z.im;
+    return 1;
+}
+
+/* 3D insertion: the intrinsic model (above) fitted to the segment, M and T_M its point
+ * and tangent at the half arc; where A.2 takes the linear model (an end angle zero, or
+ * Re rho <= 0: an inflection) the linear model of A.2: D1 = (G_A - G_B)/4,
+ * G_M = -(G_A + G_B)/4, M = A + c/(2 cos al) (cos al d + sin al unit(D1)), al = |D1|. */
 static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b,
                                   struct drc_pt *m)
 {
-    struct cp_vec3 d, ga, gb, e1, e2, v1, vm;
-    cp_real c, w, td, ang, d1re, d1im, gmre, gmim, al, sn, cs, zero;
-    int i;
-    cp_v3_sub(&b->p, &a->p, &d);
-    c = cp_v3_norm(&d);
-    zero = angle_zero(&a->p, &b->p, c); /* end angles at rounding level are the exact 0 */
-    cp_v3_comb(&d, ONE / c, &d, ZERO, &d);
-    td = cp_v3_dot(&a->t, &d);
-    cp_v3_comb(&ga, ONE, &a->t, -td, &d);
-    w = cp_v3_norm(&ga);
-    ang = cp_atan2(w, td);
-    cp_v3_comb(&ga, ang > zero ? ang / w : ZERO, &ga, ZERO, &ga);
-    td = cp_v3_dot(&b->t, &d);
-    cp_v3_comb(&gb, ONE, &b->t, -td, &d);
-    w = cp_v3_norm(&gb);
-    ang = cp_atan2(w, td);
-    cp_v3_comb(&gb, ang > zero ? ang / w : ZERO, &gb, ZERO, &gb);
-    {
-        cp_real na = cp_v3_norm(&ga), nb = cp_v3_norm(&gb);
-        struct cx gA, gB, rho;
-        if (na > ZERO) {
-            cp_v3_comb(&e1, ONE / na, &ga, ZERO, &ga);
-            cp_v3_cross(&d, &e1, &e2);
-            gA.re = na;
-            gA.im = ZERO;
-            gB.re = cp_v3_dot(&gb, &e1);
-            gB.im = cp_v3_dot(&gb, &e2);
-            rho = cdiv(gB, gA);
-            rho.re = -rho.re;
-            rho.im = -rho.im;
-        }
-        if (na > ZERO && nb > ZERO && rho.re > ZERO) {
-            struct cx z, e[4], r, dr, st, cc, zh;
-            cp_real sl;
-            z.re = rinv(cp_sqrt(rho.re * rho.re + rho.im * rho.im));
-            z.im = CP_R(3.0) * cp_atan2(rho.im, rho.re);
-            for (i = 0; i < DRC_NEWTON; i++) {
-                ce12(z, e);
-                /* r = E1/E2 - 1, r' = (E1' E2 - E1 E2') / E2^2 */
-                r = cdiv(e[0], e[1]);
-                r.re -= ONE + rho.re;
-                r.im -= rho.im;
-                dr = cmul(e[2], e[1]);
-                st = cmul(e[0], e[3]);
-                dr.re -= st.re;
-                dr.im -= st.im;
-                dr = cdiv(dr, cmul(e[1], e[1]));
-                st = cdiv(r, dr);
-                sl = st.re * st.re + st.im * st.im;
-                if (sl > ONE) {
-                    sl = ONE / cp_sqrt(sl);
-                    st.re *= sl;
-                    st.im *= sl;
-                }
-                z.re -= st.re;
-                z.im -= st.im;
-                z.re = z.re > DRC_Q_MAX ? DRC_Q_MAX : (z.re < -DRC_Q_MAX ? -DRC_Q_MAX : z.re);
-            }
-            ce12(z, e);
-            cc = cdiv(gA, e[1]); /* -C */
-            cc.re *= -HALF;      /* C/2 */
-            cc.im *= -HALF;
-            zh.re = HALF * z.re;
-            zh.im = HALF * z.im;
-            ce12(zh, e);
-            st = cmul(cc, e[1]);
-            d1re = gA.re + st.re;
-            d1im = st.im;
-            st = cmul(cc, e[0]);
-            gmre = gA.re + st.re;
-            gmim = st.im;
-            cp_v3_comb(&v1, d1re, &e1, d1im, &e2);
-            cp_v3_comb(&vm, gmre, &e1, gmim, &e2);
-        } else {
-            cp_v3_comb(&v1, CP_R(0.25), &ga, CP_R(-0.25), &gb);
-            cp_v3_comb(&vm, CP_R(-0.25), &ga, CP_R(-0.25), &gb);
-        }
+    struct cp_vec3 d, ga, gb, v1, vm, r1;
+    cp_real c, w, al, sn, cs, x[5];
+    if (twist_guess(a, b, &d, &c, &ga, &gb, x, &r1)) {
+        struct frm f;
+        frn_fit(a, b, &r1, c, x);
+        frn_start(a, &r1, x[0], &f);
+        frn_walk(&f, x, DRC_FRENET_STEPS / 2u);
+        cp_v3_comb(&m->p, ONE, &a->p, ONE, &f.p);
+        m->t = f.t;
+        return;
     }
-    /* M = A + c/(2 cos al) (cos al d + sin al unit(D1)), al = |D1| */
+    cp_v3_comb(&v1, CP_R(0.25), &ga, CP_R(-0.25), &gb);
+    cp_v3_comb(&vm, CP_R(-0.25), &ga, CP_R(-0.25), &gb);
     al = cp_v3_norm(&v1);
     cp_sincos(al, &sn, &cs);
     w = HALF * c / cs;
@@ -739,6 +943,85 @@ static CP_NOINLINE void insert_3d(const struct drc_pt *a, const struct drc_pt *b
     al = cp_v3_norm(&vm);
     cp_sincos(al, &sn, &cs);
     cp_v3_comb(&m->t, cs, &d, al > ZERO ? sn / al : ZERO, &vm);
+}
+
+/* Kink of the osculating plane at the vertex b of the segments a -> b -> c: the signed
+ * angle about T_b from the binormal of the left arc at its end to the right arc's at its
+ * start (both the intrinsic model). Returns 0 with *k = 0 when a segment takes the linear
+ * model (no osculating plane to match). */
+static int kink_at(const struct drc_pt *a, const struct drc_pt *b, const struct drc_pt *c,
+                   cp_real *k)
+{
+    struct cp_vec3 d, ga, gb, r1, bl, br, x1;
+    struct frm f;
+    cp_real cl, x[5];
+    *k = ZERO;
+    if (!twist_guess(a, b, &d, &cl, &ga, &gb, x, &r1)) {
+        return 0;
+    }
+    frn_fit(a, b, &r1, cl, x);
+    frn_start(a, &r1, x[0], &f);
+    frn_walk(&f, x, DRC_FRENET_STEPS);
+    cp_v3_cross(&f.t, &f.n, &bl);
+    if (!twist_guess(b, c, &d, &cl, &ga, &gb, x, &r1)) {
+        return 0;
+    }
+    frn_fit(b, c, &r1, cl, x);
+    frn_start(b, &r1, x[0], &f);
+    cp_v3_cross(&f.t, &f.n, &br);
+    cp_v3_cross(&bl, &br, &x1);
+    *k = cp_atan2(cp_v3_dot(&x1, &b->t), cp_v3_dot(&bl, &br));
+    return 1;
+}
+
+/* Step 1, 3D (issue 21): the tangent at every interior vertex is tilted out of its
+ * adjoining plane (about the principal normal) until the osculating planes of the two
+ * intrinsic arcs meet there without a kink: DRC_KINK_SWEEPS Gauss-Seidel sweeps, each vertex
+ * DRC_KINK_SECANT secant steps on the tilt from 0 and DRC_FD. The A3 tilt (orient_3d) is
+ * the start value and the end tangents keep it. A kink left at an original vertex is a
+ * Dirac in torsion: its discrete value doubles with every pass (docs/DRC-TORSION.md). */
+static CP_NOINLINE void kink_3d(const struct cp_vec3 *p, unsigned ps, struct cp_vec3 *t,
+                                unsigned ts, uint32_t n)
+{
+    uint32_t s, j, i;
+    for (s = 0; s < DRC_KINK_SWEEPS; s++) {
+        for (j = 1; j + 1u < n; j++) {
+            struct drc_pt a, b, c;
+            struct cp_vec3 t0, u, d0, d1;
+            cp_real b0 = ZERO, b1 = DRC_FD, k0, k1, sn, cs, un;
+            a.p = p[(j - 1u) * ps];
+            a.t = t[(j - 1u) * ts];
+            b.p = p[j * ps];
+            b.t = t[j * ts];
+            c.p = p[(j + 1u) * ps];
+            c.t = t[(j + 1u) * ts];
+            t0 = b.t;
+            cp_v3_sub(&b.p, &a.p, &d0);
+            cp_v3_sub(&c.p, &b.p, &d1);
+            cp_v3_cross(&d0, &d1, &u);
+            cp_v3_comb(&u, ONE, &u, -cp_v3_dot(&u, &t0), &t0);
+            un = cp_v3_norm(&u);
+            if (!(un > ZERO) || !kink_at(&a, &b, &c, &k0)) {
+                continue;
+            }
+            cp_v3_comb(&u, ONE / un, &u, ZERO, &u);
+            for (i = 0; i < DRC_KINK_SECANT; i++) {
+                cp_real b2;
+                cp_sincos(b1, &sn, &cs);
+                cp_v3_comb(&b.t, cs, &t0, sn, &u);
+                (void)kink_at(&a, &b, &c, &k1);
+                if (!(cp_fabs(k1 - k0) > ZERO)) {
+                    break;
+                }
+                b2 = b1 - k1 * (b1 - b0) / (k1 - k0);
+                b0 = b1;
+                k0 = k1;
+                b1 = b2;
+            }
+            cp_sincos(b1, &sn, &cs);
+            cp_v3_comb(&t[j * ts], cs, &t0, sn, &u);
+        }
+    }
 }
 
 void drc_insert(const struct drc_pt *a, const struct drc_pt *b, int planar, struct drc_pt *m)

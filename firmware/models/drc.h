@@ -22,9 +22,15 @@
  *           looped behind P_0). The bound keeps every tangent < 90 deg from its chords
  *           and the end segment convex; circles are untouched (there a_0 = b_0 <= phi_1).
  *           tests/ref_drc.c implements the same rule.
+ *           3D (issue 21, docs/DRC-TORSION.md): then every interior tangent is tilted
+ *           until the intrinsic arcs (step 2) on both sides share the osculating plane.
  *   step 2  one pass acts on every segment (A, B, T_A, T_B) independently: closed
- *           form (planar: real exponential model, q by bisection) or the twisted
- *           exponential model (3D: complex z by DRC_NEWTON damped Newton steps).
+ *           form (planar: real exponential model, q by bisection) or, 3D, the intrinsic
+ *           arc (exponential curvature, constant torsion, 16 exact helical pieces) fitted
+ *           by Newton from the twisted exponential model's guess (complex z by
+ *           DRC_NEWTON damped Newton steps). The arc family is closed under halving, so
+ *           no inserted point kinks the osculating plane and the discrete torsion does
+ *           not grow with the passes (it doubled per pass with the twisted model alone).
  * Because step 2 is per segment, K passes over one original segment are a binary
  * subdivision tree of depth K: the iterator streams it leaf by leaf with an explicit
  * stack of K nodes (stk[], no buffer of the final size), and drc_thicken() does one
@@ -51,7 +57,8 @@
  * Footprint: the stream uses only the planar
  * core (validation, tangent assignment, planar insertion) and the iterator, ~5.5 KB of
  * M4F flash with job_drc.c (was ~10.2 KB). The 3D extension (adjoining-plane normals,
- * the twist rejection, the A3 tilt, the twisted complex model, ~2 KB) and the A.4
+ * the twist rejection, the A3 tilt and the osculating-plane solve, the intrinsic arc with
+ * its twisted-model guess, ~4.5 KB: docs/DRC-TORSION.md) and the A.4
  * measures stay in this library, compiled and tested on the host and in the M4F unit
  * image, but the stream does not reference them, so --gc-sections drops them from the
  * firmware image: a 3D point set is CP_ERR_OFF_PLANE at RUN (error:25). Other trade-offs:
@@ -204,9 +211,10 @@ CP_MUST_CHECK int drc_tangents(const struct cp_vec3 *p, unsigned ps, struct cp_v
 int drc_is_planar(const struct drc_pt *buf, uint32_t n);
 
 /* Step 2 on one segment: the new point m between a and b (planar: 1 = the real model,
- * requires z == 0 everywhere; 0 = the 3D twisted model). Cannot fail: the inputs come
- * from drc_tangents or an earlier pass (chord > 0, tangent angles < 90 deg; the end
- * angle bound above keeps that true for every planar set drc_tangents accepts).
+ * requires z == 0 everywhere; 0 = the 3D intrinsic arc, docs/DRC-TORSION.md). Cannot
+ * fail: the inputs come from drc_tangents or an earlier pass (chord > 0, tangent angles
+ * < 90 deg; the end angle bound above keeps that true for every planar set drc_tangents
+ * accepts).
  * Tangent-triangle containment of m holds for convex segments (end angles of one turn,
  * ratio within r(+-DRC_Q_MAX) ~ 1:48, where q is not clamped). A segment with an
  * inflection or exactly one end angle on the chord (next to an inflection or a collinear
