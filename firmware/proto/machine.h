@@ -18,6 +18,7 @@
 #include "cp_types.h"
 #include "hal_uart.h"
 #include "job.h"
+#include "link.h"
 
 /* One row of machines.def (the columns are documented there). */
 struct machine_dialect {
@@ -75,17 +76,6 @@ struct machine_link {
     uint16_t tx_len, tx_pos;
     uint8_t tx[MACHINE_TX_BUF];
 };
-
-/* A link's send buffer buf[0..cap): the bytes buf[*pos..*len) wait for the HAL. The host
- * link's (struct proto: tx, tx_len, tx_pos) and the machine link's below use these. */
-/* Free bytes after the unsent ones, which move to the front first. */
-size_t link_tx_room(uint8_t *buf, size_t cap, uint16_t *len, uint16_t *pos);
-/* Append s[0..n) (at most the room left). */
-void link_tx_put(uint8_t *buf, size_t cap, uint16_t *len, const char *s, size_t n);
-/* Write what is pending to uart (non-blocking, partial writes are normal): > 0 if bytes
- * moved, 0 if not, CP_ERR_IO on a HAL failure. */
-int link_tx_flush(const struct hal_uart *uart, const uint8_t *buf, uint16_t *len,
-                  uint16_t *pos);
 
 /* Start the link on uart (NULL: no machine link). */
 void machine_link_init(struct machine_link *l, const struct hal_uart *uart);
